@@ -1,0 +1,57 @@
+#include "cli.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+namespace rg {
+
+bool displayAvailable() {
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    return (x11 && *x11) || (wayland && *wayland);
+}
+
+void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
+    app.add_option("--scene", opts.scene, "Scene JSON file (default: the chapter's own scene)");
+    if (reference)
+        app.add_flag("--reference", opts.reference,
+                     "Also render the CPU double-precision reference and report the error");
+}
+
+std::optional<int> parseCommandLine(int argc, char** argv, const std::string& chapter,
+                                    const std::string& description, Options& opts,
+                                    const ChapterOptions& chapterOptions) {
+    opts.chapter = chapter;
+    CLI::App app{description, chapter};
+    app.add_flag("--headless", opts.headless, "Render offscreen (default when no display exists)");
+    app.add_option("--width", opts.width, "Image width in pixels")->check(CLI::Range(1, 16384));
+    app.add_option("--height", opts.height, "Image height in pixels")->check(CLI::Range(1, 16384));
+    app.add_option("--frames", opts.frames,
+                   "Frames to render (default: 10 headless, until closed in a window)")
+        ->check(CLI::Range(1, 1000000));
+    app.add_option("--output", opts.output, "PNG to write (default: <chapter>.png)");
+    app.add_option("--report", opts.report, "JSON report to write (default: the PNG name with .json)");
+    app.add_flag("--validation", opts.validation,
+                 "Enable the Khronos validation layer; any message makes the exit code non-zero");
+    app.add_option("--device", opts.device, "Physical device index to use (see the list printed at start)")
+        ->check(CLI::Range(0, 64));
+    if (chapterOptions) chapterOptions(app, opts);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::printf("%s", app.help().c_str());
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "%s: error: %s (see --help)\n", chapter.c_str(), e.what());
+        return 2;
+    }
+    if (!opts.headless && !displayAvailable()) opts.headless = true;
+    if (opts.output.empty()) opts.output = chapter + ".png";
+    if (opts.report.empty())
+        opts.report = std::filesystem::path(opts.output).replace_extension(".json").string();
+    return std::nullopt;
+}
+
+}  // namespace rg

@@ -1,0 +1,44 @@
+// One command line for every chapter (CLI11). Chapters add their own options
+// through the callback; bad input prints one line and gives exit code 2.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace rg {
+
+struct Options {
+    std::string chapter;          // "04_raygen_miss": names the defaults below
+    bool headless = false;        // no window: render offscreen, write PNG and report
+    int width = 800;
+    int height = 450;
+    int frames = 0;               // 0: headless 10, windowed until the window closes
+    std::string output;           // PNG path (default <chapter>.png)
+    std::string report;           // JSON path (default: the PNG path with .json)
+    bool validation = false;      // VK_LAYER_KHRONOS_validation + synchronization checks
+    int device = -1;              // index into vkEnumeratePhysicalDevices, -1: choose
+    // From chapter 03 on:
+    std::string scene;            // scene JSON (default: the chapter's own)
+    bool reference = false;       // also render the CPU double-precision reference
+
+    int framesToRun() const { return frames > 0 ? frames : (headless ? 10 : 0); }
+};
+
+using ChapterOptions = std::function<void(CLI::App&, Options&)>;
+
+// Parses argv into opts. Returns an exit code when the program should stop
+// now (0 after --help, 2 after bad input), std::nullopt to go on.
+std::optional<int> parseCommandLine(int argc, char** argv, const std::string& chapter,
+                                    const std::string& description, Options& opts,
+                                    const ChapterOptions& chapterOptions = {});
+
+// Options every scene chapter (03+) adds: --scene, and with reference=true also --reference.
+void addSceneOptions(CLI::App& app, Options& opts, bool reference);
+
+// True when a window can be opened (an X11 or Wayland display is set).
+bool displayAvailable();
+
+}  // namespace rg

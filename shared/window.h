@@ -1,0 +1,46 @@
+// A GLFW window with a Vulkan surface and a swapchain that follows resizes.
+// Presentation itself (acquire, blit, present) is in frame_loop.cpp.
+#pragma once
+#include "context.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+class Window {
+public:
+    Window(int width, int height, const std::string& title);  // throws when no window can be opened
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    std::vector<const char*> instanceExtensions() const;
+    VkSurfaceKHR createSurface(VkInstance instance, DeletionQueue& deletion);
+    // (Re)creates the swapchain at the framebuffer's size. The first call
+    // pushes its destruction onto `deletion` (before the device's).
+    void createSwapchain(const Gpu& gpu, DeletionQueue& deletion);
+
+    bool shouldClose() const { return glfwWindowShouldClose(window_); }
+    // Processes events; while minimized (zero-sized framebuffer) it blocks
+    // until the window is visible again or closed.
+    void pollEvents();
+    bool resized() const { return resized_; }
+
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+    std::vector<VkImage> images;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{};
+
+private:
+    void destroySwapchain();
+    GLFWwindow* window_ = nullptr;
+    VkDevice device_ = VK_NULL_HANDLE;
+    bool resized_ = false;
+};
+
+}  // namespace rg

@@ -1,0 +1,89 @@
+#include "harness.h"
+
+#include "display.h"
+
+#include <stb_image.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace rgtest {
+
+namespace {
+std::string quote(const std::string& s) {
+    std::string q(1, '\'');
+    for (char c : s) {
+        if (c == '\'') q.append("'\\''");
+        else q.push_back(c);
+    }
+    q.push_back('\'');
+    return q;
+}
+}  // namespace
+
+RunResult run(const std::string& exe, const std::vector<std::string>& args) {
+    std::string command = quote(exe);
+    for (const auto& a : args) {
+        command.push_back(' ');
+        command.append(quote(a));
+    }
+    command.append(" 2>&1");
+    RunResult result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    size_t n;
+    while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+    int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return result;
+}
+
+Png readPng(const std::string& path) {
+    Png png;
+    int channels = 0;
+    unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
+    EXPECT_NE(data, nullptr) << "cannot read " << path;
+    if (data) {
+        png.rgb.assign(data, data + size_t(png.width) * png.height * 3);
+        stbi_image_free(data);
+    }
+    return png;
+}
+
+nlohmann::json readJson(const std::string& path) {
+    std::ifstream file(path);
+    EXPECT_TRUE(file.good()) << "cannot read " << path;
+    if (!file) return {};
+    return nlohmann::json::parse(file, nullptr, false);
+}
+
+std::string outputDir(const std::string& name) {
+    std::filesystem::path dir = std::filesystem::path(RG_TEST_OUTPUT_DIR) / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+int display8(double linear) { return rg::toDisplay8(linear); }
+
+void expectCleanReport(const nlohmann::json& report, const std::string& chapter, int width, int height) {
+    ASSERT_TRUE(report.is_object());
+    EXPECT_EQ(report.value("chapter", ""), chapter);
+    EXPECT_EQ(report.value("width", 0), width);
+    EXPECT_EQ(report.value("height", 0), height);
+    EXPECT_EQ(report.value("validation_messages", -1), 0);
+    EXPECT_TRUE(report.value("validation", false));
+    EXPECT_FALSE(report.value("device", "").empty());
+    EXPECT_FALSE(report.value("driver", "").empty());
+    ASSERT_TRUE(report.contains("gpu_ms"));
+    EXPECT_GT(report["gpu_ms"].value("median", 0.0), 0.0);
+    EXPECT_LE(report["gpu_ms"].value("min", 0.0), report["gpu_ms"].value("median", 0.0));
+    EXPECT_LE(report["gpu_ms"].value("median", 0.0), report["gpu_ms"].value("max", 0.0));
+    EXPECT_GE(report.value("frames", 0), 1);
+}
+
+}  // namespace rgtest

@@ -1,0 +1,38 @@
+// Test helpers: run a chapter executable as a user would, then read the PNG
+// and the JSON report it wrote.
+#pragma once
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rgtest {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output;  // stdout and stderr together
+};
+
+// Runs `exe args...` (validation messages are printed to stderr).
+RunResult run(const std::string& exe, const std::vector<std::string>& args);
+
+struct Png {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;
+    const uint8_t* at(int x, int y) const { return &rgb[3 * (size_t(y) * width + x)]; }
+};
+Png readPng(const std::string& path);  // fails the test when unreadable
+nlohmann::json readJson(const std::string& path);
+
+// A fresh folder for one test's files, under the build tree.
+std::string outputDir(const std::string& name);
+
+// The display value (0-255) that a linear value turns into (shared/display.h).
+int display8(double linear);
+
+// Every report from a clean run: right size, validation clean, GPU time measured.
+void expectCleanReport(const nlohmann::json& report, const std::string& chapter, int width, int height);
+
+}  // namespace rgtest

@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Installs what is missing (Debian 12), builds RayGlass, and runs every
+# chapter headless with validation, writing each chapter's PNG and JSON
+# report into one folder (default: out/) and printing one line per chapter.
+#
+#   tools/setup.sh [--deps-only] [--out DIR] [--build DIR]
+#
+# Idempotent: installed packages are skipped. Uses sudo when not root.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+deps_only=0
+out=out
+build=build
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --deps-only) deps_only=1 ;;
+    --out) out="$2"; shift ;;
+    --build) build="$2"; shift ;;
+    *) echo "setup.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev
+          libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3)
+min_mesa=24.1
+
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+
+need_what() {
+  echo "RayGlass needs: a C++20 compiler, CMake >= 3.22, the Vulkan loader and headers, glslangValidator,"
+  echo "GLFW 3.3, GLM, stb, nlohmann-json, CLI11, GoogleTest, Xvfb (window tests), jq, gnuplot,"
+  echo "and a Vulkan driver with VK_KHR_ray_tracing_pipeline (no GPU: Mesa lavapipe >= $min_mesa)."
+}
+
+mesa_version() { dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || true; }
+mesa_ok() {
+  local v; v=$(mesa_version)
+  [ -n "$v" ] && dpkg --compare-versions "$v" ge "$min_mesa"
+}
+
+# The Debian archive URI of this system's existing apt source for `codename`
+# (deb822 .sources files and one-line .list files both count).
+debian_uri() {
+  local codename=$1 f
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [ -f "$f" ] || continue
+    awk -v c="$codename" '
+      /^[[:space:]]*$/ { if (uri && suite) { print uri; exit } uri=""; suite="" ; next }
+      tolower($1)=="uris:" { for (i=2;i<=NF;i++) if ($i ~ /debian\/?$/) uri=$i }
+      tolower($1)=="suites:" { for (i=2;i<=NF;i++) if ($i==c) suite=1 }
+      END { if (uri && suite) print uri }' "$f" | head -n1
+  done | head -n1 | grep . && return 0
+  cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null |
+    awk -v c="$codename" '$1=="deb" { for (i=2;i<=NF;i++) if ($i ~ /^[a-z]+:/ && $(i+1)==c && $i ~ /debian\/?$/) { print $i; exit } }' |
+    head -n1 | grep .
+}
+
+install_deps() {
+  if ! command -v dpkg >/dev/null || [ ! -f /etc/debian_version ]; then
+    echo "setup.sh: this is not a Debian system; install these yourself, then run cmake:" >&2
+    need_what >&2
+    exit 1
+  fi
+  local missing=() p
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ] || ! mesa_ok; then
+    export DEBIAN_FRONTEND=noninteractive
+    "${sudo_cmd[@]}" apt-get update -q
+  fi
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "== installing: ${missing[*]}"
+    "${sudo_cmd[@]}" apt-get install -y -q "${missing[@]}"
+  fi
+  if ! mesa_ok; then
+    # Debian 12's own Mesa (22.3) has no ray tracing in lavapipe; the
+    # release's backports suite has a newer one. Same archive, suite
+    # <codename>-backports, taken from the system's existing source.
+    . /etc/os-release
+    local codename=${VERSION_CODENAME:-}
+    local uri; uri=$(debian_uri "$codename" || true)
+    if [ -z "$codename" ] || [ -z "$uri" ]; then
+      echo "setup.sh: cannot find this system's Debian apt source to derive $codename-backports from." >&2
+      echo "Install mesa-vulkan-drivers >= $min_mesa (Debian: from <codename>-backports) or a GPU driver with ray tracing." >&2
+      exit 1
+    fi
+    local list=/etc/apt/sources.list.d/rayglass-backports.sources
+    if ! grep -qs "$codename-backports" /etc/apt/sources.list /etc/apt/sources.list.d/* ; then
+      echo "== adding $codename-backports from $uri"
+      printf 'Types: deb\nURIs: %s\nSuites: %s-backports\nComponents: main\nSigned-By: /usr/share/keyrings/debian-archive-keyring.gpg\n' \
+        "$uri" "$codename" | "${sudo_cmd[@]}" tee "$list" >/dev/null
+      "${sudo_cmd[@]}" apt-get update -q
+    fi
+    echo "== installing mesa-vulkan-drivers from $codename-backports"
+    "${sudo_cmd[@]}" apt-get install -y -q -t "$codename-backports" mesa-vulkan-drivers
+    if ! mesa_ok; then
+      echo "setup.sh: mesa-vulkan-drivers is $(mesa_version), RayGlass needs >= $min_mesa." >&2
+      exit 1
+    fi
+  fi
+}
+
+install_deps
+[ "$deps_only" -eq 1 ] && exit 0
+
+echo "== building in $build"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$(nproc)"
+
+exec tools/run-all.sh --build "$build" --out "$out"
