@@ -1,0 +1,319 @@
+#include "accel.h"
+
+#include "gpu_timer.h"
+#include "vk_check.h"
+
+#include <cstring>
+#include <stdexcept>
+
+namespace rg {
+
+namespace {
+
+AccelerationStructure createAccelerationStructure(const Gpu& gpu, DeletionQueue& deletion,
+                                                  VkAccelerationStructureTypeKHR type, VkDeviceSize size) {
+    AccelerationStructure as;
+    as.buffer = createBuffer(gpu, deletion, size,
+                             VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR |
+                                 VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkAccelerationStructureCreateInfoKHR info{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR,
+        .buffer = as.buffer.handle,
+        .size = size,
+        .type = type,
+    };
+    VK_CHECK(vkCreateAccelerationStructureKHR(gpu.device, &info, nullptr, &as.handle));
+    VkDevice device = gpu.device;
+    VkAccelerationStructureKHR handle = as.handle;
+    deletion.push([device, handle] { vkDestroyAccelerationStructureKHR(device, handle, nullptr); });
+    VkAccelerationStructureDeviceAddressInfoKHR address{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR,
+        .accelerationStructure = as.handle,
+    };
+    as.address = vkGetAccelerationStructureDeviceAddressKHR(gpu.device, &address);
+    return as;
+}
+
+VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
+    return (value + alignment - 1) / alignment * alignment;
+}
+
+// A barrier between acceleration structure builds/copies and what follows.
+void accelBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+    VkMemoryBarrier barrier{
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+        .dstAccessMask = dstAccess,
+    };
+    vkCmdPipelineBarrier(cmd,
+                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,  // after the build
+                         dstStage,                                                // before its users
+                         0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+// [region build_blas]
+// Builds one BLAS with PREFER_FAST_TRACE | ALLOW_COMPACTION, asks the GPU for
+// its compacted size, copies it into a structure of exactly that size and
+// frees the original. Scenes are static at the BLAS level, so the smaller
+// copy is all that is kept.
+AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion,
+                                         const VkAccelerationStructureGeometryKHR& geometry, uint32_t primitiveCount,
+                                         BlasStats& stats) {
+    VkAccelerationStructureBuildGeometryInfoKHR build{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR,
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+        .geometryCount = 1,
+        .pGeometries = &geometry,
+    };
+    VkAccelerationStructureBuildSizesInfoKHR sizes{.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    vkGetAccelerationStructureBuildSizesKHR(gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build,
+                                            &primitiveCount, &sizes);
+
+    DeletionQueue temporary;  // the uncompacted BLAS and the scratch memory
+    AccelerationStructure full = createAccelerationStructure(gpu, temporary, build.type, sizes.accelerationStructureSize);
+    VkDeviceSize scratchAlign = gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
+    Buffer scratch = createBuffer(gpu, temporary, sizes.buildScratchSize + scratchAlign,
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                  VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    build.dstAccelerationStructure = full.handle;
+    build.scratchData.deviceAddress = alignUp(scratch.address, scratchAlign);
+
+    VkQueryPoolCreateInfo queryInfo{
+        .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+        .queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR,
+        .queryCount = 1,
+    };
+    VkQueryPool query = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateQueryPool(gpu.device, &queryInfo, nullptr, &query));
+    VkDevice device = gpu.device;
+    temporary.push([device, query] { vkDestroyQueryPool(device, query, nullptr); });
+    vkResetQueryPool(gpu.device, query, 0, 1);
+
+    GpuTimer timer(gpu, temporary, 2);
+    VkAccelerationStructureBuildRangeInfoKHR range{.primitiveCount = primitiveCount};
+    const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+    submitOnce(gpu, [&](VkCommandBuffer cmd) {
+        timer.begin(cmd, 0);
+        vkCmdBuildAccelerationStructuresKHR(cmd, 1, &build, &ranges);
+        timer.end(cmd, 0);
+        // The compacted size is known only once the build has finished.
+        accelBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                     VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR);
+        vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, 1, &full.handle,
+                                                      VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, query, 0);
+    });
+    VkDeviceSize compactSize = 0;
+    VK_CHECK(vkGetQueryPoolResults(gpu.device, query, 0, 1, sizeof(compactSize), &compactSize, sizeof(compactSize),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+
+    AccelerationStructure compact = createAccelerationStructure(gpu, deletion, build.type, compactSize);
+    submitOnce(gpu, [&](VkCommandBuffer cmd) {
+        timer.begin(cmd, 1);
+        VkCopyAccelerationStructureInfoKHR copy{
+            .sType = VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR,
+            .src = full.handle,
+            .dst = compact.handle,
+            .mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR,
+        };
+        vkCmdCopyAccelerationStructureKHR(cmd, &copy);
+        timer.end(cmd, 1);
+    });
+    stats.buildBytes = sizes.accelerationStructureSize;
+    stats.compactBytes = compactSize;
+    stats.buildMs = timer.readMs(0);
+    stats.compactMs = timer.readMs(1);
+    return compact;  // `temporary` frees the original now: the copy has finished
+}
+// [end]
+
+}  // namespace
+
+// [region unit_shapes]
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion) {
+    UnitShapes shapes;
+    DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
+    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
+    // The unit quad: y = 0, facing +y, two triangles.
+    const float vertices[] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+    const uint32_t indices[] = {0, 2, 1, 0, 3, 2};
+    Buffer vertexBuffer = createDeviceBuffer(gpu, inputs, vertices, sizeof(vertices), input);
+    Buffer indexBuffer = createDeviceBuffer(gpu, inputs, indices, sizeof(indices), input);
+    VkAccelerationStructureGeometryKHR triangles{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
+        .geometry = {.triangles = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
+            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
+            .vertexData = {.deviceAddress = vertexBuffer.address},
+            .vertexStride = 3 * sizeof(float),
+            .maxVertex = 3,
+            .indexType = VK_INDEX_TYPE_UINT32,
+            .indexData = {.deviceAddress = indexBuffer.address},
+        }},
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
+    };
+    shapes.stats.push_back({.name = "unit_quad", .geometry = "triangles"});
+    shapes.quad = buildCompactedBlas(gpu, deletion, triangles, 2, shapes.stats.back());
+
+    // The unit sphere: only its bounding box goes into the BLAS. The
+    // traversal calls the intersection shader for rays that enter the box.
+    const VkAabbPositionsKHR box{-1, -1, -1, 1, 1, 1};
+    Buffer aabbBuffer = createDeviceBuffer(gpu, inputs, &box, sizeof(box), input);
+    VkAccelerationStructureGeometryKHR aabbs{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
+        .geometry = {.aabbs = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR,
+            .data = {.deviceAddress = aabbBuffer.address},
+            .stride = sizeof(VkAabbPositionsKHR),
+        }},
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+    };
+    shapes.stats.push_back({.name = "unit_sphere", .geometry = "aabbs"});
+    shapes.sphere = buildCompactedBlas(gpu, deletion, aabbs, 1, shapes.stats.back());
+    return shapes;
+}
+// [end]
+
+VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
+    VkTransformMatrixKHR t;  // 3 rows x 4 columns, row-major; glm is column-major
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 4; ++col) t.matrix[row][col] = float(m[col][row]);
+    return t;
+}
+
+// [region make_instances]
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes) {
+    std::vector<VkAccelerationStructureInstanceKHR> instances;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const Object& o = scene.objects[i];
+        bool sphere = o.type == ShapeType::Sphere;
+        instances.push_back({
+            .transform = toVkTransform(o.transform),
+            .instanceCustomIndex = uint32_t(i),  // gl_InstanceCustomIndexEXT: the object
+            .mask = 0xFF,                        // every ray sees every instance
+            .instanceShaderBindingTableRecordOffset = sphere ? 1u : 0u,  // hit group
+            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // quads are two-sided
+            .accelerationStructureReference = sphere ? shapes.sphere.address : shapes.quad.address,
+        });
+    }
+    return instances;
+}
+// [end]
+
+namespace {
+VkAccelerationStructureGeometryKHR instanceGeometry(const Buffer& instances) {
+    return {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR,
+        .geometry = {.instances = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR,
+            .arrayOfPointers = VK_FALSE,
+            .data = {.deviceAddress = instances.address},
+        }},
+    };
+}
+}  // namespace
+
+// [region build_tlas]
+Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAccelerationStructureInstanceKHR>& instances) {
+    Tlas tlas;
+    tlas.count = uint32_t(instances.size());
+    VkDeviceSize bytes = instances.size() * sizeof(VkAccelerationStructureInstanceKHR);
+    tlas.instances = createDeviceBuffer(gpu, deletion, instances.data(), bytes,
+                                        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    VkAccelerationStructureGeometryKHR geometry = instanceGeometry(tlas.instances);
+    VkAccelerationStructureBuildGeometryInfoKHR build{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+        // ALLOW_UPDATE: moving an object only changes its transform, so the
+        // TLAS is refitted in place each frame instead of rebuilt (see the docs).
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR,
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR,
+        .geometryCount = 1,
+        .pGeometries = &geometry,
+    };
+    VkAccelerationStructureBuildSizesInfoKHR sizes{.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    vkGetAccelerationStructureBuildSizesKHR(gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build,
+                                            &tlas.count, &sizes);
+    tlas.buildBytes = sizes.accelerationStructureSize;
+    tlas.updateScratchBytes = sizes.updateScratchSize;
+    tlas.as = createAccelerationStructure(gpu, deletion, build.type, sizes.accelerationStructureSize);
+    VkDeviceSize scratchAlign = gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
+    tlas.scratch = createBuffer(gpu, deletion, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + scratchAlign,
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    build.dstAccelerationStructure = tlas.as.handle;
+    tlas.scratchAddress = alignUp(tlas.scratch.address, scratchAlign);
+    build.scratchData.deviceAddress = tlas.scratchAddress;
+    VkAccelerationStructureBuildRangeInfoKHR range{.primitiveCount = tlas.count};
+    const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+    DeletionQueue local;
+    GpuTimer timer(gpu, local, 1);
+    submitOnce(gpu, [&](VkCommandBuffer cmd) {
+        timer.begin(cmd, 0);
+        vkCmdBuildAccelerationStructuresKHR(cmd, 1, &build, &ranges);
+        timer.end(cmd, 0);
+    });
+    tlas.buildMs = timer.readMs(0);
+    return tlas;
+}
+
+void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
+                      const std::vector<VkAccelerationStructureInstanceKHR>& instances,
+                      VkPipelineStageFlags consumerStage) {
+    if (instances.size() != tlas.count || instances.size() * sizeof(instances[0]) > 65536)
+        throw std::runtime_error("recordTlasUpdate: needs the TLAS's own instances, at most 1024");
+    // The previous frame's rays and refit must be done with the instances
+    // and the TLAS before this frame overwrites them.
+    VkMemoryBarrier readsDone{
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+        .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+    };
+    vkCmdPipelineBarrier(cmd,
+                         consumerStage | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,  // earlier users
+                         VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                         0, 1, &readsDone, 0, nullptr, 0, nullptr);
+    // The new transforms travel inside the command buffer (at most 64 KiB,
+    // 1024 instances): no host-visible memory that a frame in flight still reads.
+    vkCmdUpdateBuffer(cmd, tlas.instances.handle, 0, instances.size() * sizeof(instances[0]), instances.data());
+    VkMemoryBarrier written{
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_SHADER_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                         0, 1, &written, 0, nullptr, 0, nullptr);
+
+    VkAccelerationStructureGeometryKHR geometry = instanceGeometry(tlas.instances);
+    VkAccelerationStructureBuildGeometryInfoKHR update{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
+        .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+        .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR,  // must match the build's flags
+        .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR,
+        .srcAccelerationStructure = tlas.as.handle,  // updated in place: src == dst
+        .dstAccelerationStructure = tlas.as.handle,
+        .geometryCount = 1,
+        .pGeometries = &geometry,
+        .scratchData = {.deviceAddress = tlas.scratchAddress},
+    };
+    VkAccelerationStructureBuildRangeInfoKHR range{.primitiveCount = tlas.count};
+    const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+    vkCmdBuildAccelerationStructuresKHR(cmd, 1, &update, &ranges);
+    accelBarrier(cmd, consumerStage, VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_SHADER_READ_BIT);
+}
+// [end]
+
+}  // namespace rg

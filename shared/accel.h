@@ -1,0 +1,61 @@
+// Acceleration structures (thesis 2.2.1, chapter 03). Two levels: bottom
+// level (BLAS) holds geometry in its own coordinates, top level (TLAS) holds
+// instances of BLASes, each with a world transform.
+#pragma once
+#include "context.h"
+#include "resources.h"
+#include "scene.h"
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+struct AccelerationStructure {
+    VkAccelerationStructureKHR handle = VK_NULL_HANDLE;
+    Buffer buffer;                 // the memory it lives in
+    VkDeviceAddress address = 0;   // what a TLAS instance or a shader refers to
+};
+
+struct BlasStats {
+    std::string name;
+    std::string geometry;          // "triangles" or "aabbs"
+    VkDeviceSize buildBytes = 0;   // size when built
+    VkDeviceSize compactBytes = 0; // size after compaction
+    double buildMs = 0, compactMs = 0;
+};
+
+// The two unit shapes every scene object instances (scene.h): the quad
+// [-1,1] x {0} x [-1,1] as two triangles, and the box [-1,1]^3 that holds the
+// analytic unit sphere (an intersection shader finds the sphere inside it).
+struct UnitShapes {
+    AccelerationStructure quad, sphere;
+    std::vector<BlasStats> stats;
+};
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion);
+
+// TLAS instances: one per object, in object order (instance index = object
+// index), each pointing at the quad or sphere BLAS with the object's transform.
+// Hit group offset: 0 for triangles, 1 for spheres (chapter 04's SBT).
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes);
+VkTransformMatrixKHR toVkTransform(const glm::dmat4& m);
+
+struct Tlas {
+    AccelerationStructure as;
+    Buffer instances;   // device-local VkAccelerationStructureInstanceKHR array
+    Buffer scratch;     // kept for updates
+    VkDeviceAddress scratchAddress = 0;  // aligned start inside `scratch`
+    uint32_t count = 0;
+    VkDeviceSize buildBytes = 0, updateScratchBytes = 0;
+    double buildMs = 0;  // GPU time of the first build
+};
+// Builds with ALLOW_UPDATE so that moving objects can be refitted in place.
+Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAccelerationStructureInstanceKHR>& instances);
+// Records new instance data (same instances, only transforms changed) and an
+// in-place update (refit) of the TLAS, ordered after the rays of earlier
+// frames and before `consumerStage` of this one.
+void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
+                      const std::vector<VkAccelerationStructureInstanceKHR>& instances,
+                      VkPipelineStageFlags consumerStage);
+
+}  // namespace rg

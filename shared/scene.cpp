@@ -1,0 +1,221 @@
+#include "scene.h"
+
+#include "app.h"
+#include "resources.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <set>
+
+namespace rg {
+
+namespace {
+
+using nlohmann::json;
+
+// Reads one JSON value and names where it came from when it is wrong.
+class Reader {
+public:
+    explicit Reader(std::string file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+        throw InputError(file_ + ": " + key + ": " + what);
+    }
+
+    void onlyKeys(const json& j, const std::string& where, const std::set<std::string>& allowed) const {
+        if (!j.is_object()) fail(where, "must be an object");
+        for (auto it = j.begin(); it != j.end(); ++it)
+            if (!allowed.count(it.key())) {
+                std::string list;
+                for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+                fail(where.empty() ? it.key() : where + "." + it.key(), "unknown key (known: " + list + ")");
+            }
+    }
+
+    double number(const json& j, const std::string& key, double lo, double hi) const {
+        if (!j.is_number()) fail(key, "must be a number");
+        double v = j.get<double>();
+        if (!std::isfinite(v) || v < lo || v > hi)
+            fail(key, "value " + j.dump() + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+        return v;
+    }
+
+    glm::dvec3 vec3(const json& j, const std::string& key, double lo = -1e30, double hi = 1e30) const {
+        if (j.is_number()) {  // a single number means (v, v, v)
+            double v = number(j, key, lo, hi);
+            return {v, v, v};
+        }
+        if (!j.is_array() || j.size() != 3) fail(key, "must be an array of 3 numbers");
+        return {number(j[0], key + "[0]", lo, hi), number(j[1], key + "[1]", lo, hi),
+                number(j[2], key + "[2]", lo, hi)};
+    }
+
+    std::string string(const json& j, const std::string& key) const {
+        if (!j.is_string()) fail(key, "must be a string");
+        return j.get<std::string>();
+    }
+
+    bool boolean(const json& j, const std::string& key) const {
+        if (!j.is_boolean()) fail(key, "must be true or false");
+        return j.get<bool>();
+    }
+
+private:
+    static std::string fmt(double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        return b;
+    }
+    std::string file_;
+};
+
+constexpr double kHuge = 1e30;
+
+glm::dmat4 readTransform(const Reader& r, const json& j, const std::string& key) {
+    r.onlyKeys(j, key, {"translate", "rotate_deg", "scale"});
+    glm::dmat4 m(1.0);
+    if (j.contains("translate")) m = glm::translate(m, r.vec3(j["translate"], key + ".translate"));
+    if (j.contains("rotate_deg")) {  // Euler angles about x, then y, then z (applied z last)
+        glm::dvec3 a = glm::radians(r.vec3(j["rotate_deg"], key + ".rotate_deg", -3600, 3600));
+        m = glm::rotate(m, a.z, {0, 0, 1});
+        m = glm::rotate(m, a.y, {0, 1, 0});
+        m = glm::rotate(m, a.x, {1, 0, 0});
+    }
+    if (j.contains("scale")) m = glm::scale(m, r.vec3(j["scale"], key + ".scale", 1e-12, kHuge));
+    return m;
+}
+
+}  // namespace
+
+std::string defaultScenePath(const std::string& name) {
+    return (executableDir() / "assets" / "scenes" / (name + ".json")).string();
+}
+
+Scene loadScene(const std::string& path) {
+    Reader r(path);
+    std::ifstream file(path);
+    if (!file) throw InputError(path + ": cannot open the scene file");
+    json j = json::parse(file, nullptr, false);
+    if (j.is_discarded()) throw InputError(path + ": not valid JSON");
+    r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
+
+    Scene s;
+    s.path = path;
+    if (j.contains("scale")) s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);
+
+    if (!j.contains("camera")) r.fail("camera", "missing");
+    const json& c = j["camera"];
+    r.onlyKeys(c, "camera", {"position", "look_at", "up", "fov_y_deg"});
+    if (c.contains("position")) s.camera.position = r.vec3(c["position"], "camera.position");
+    if (c.contains("look_at")) s.camera.lookAt = r.vec3(c["look_at"], "camera.look_at");
+    if (c.contains("up")) s.camera.up = r.vec3(c["up"], "camera.up");
+    if (c.contains("fov_y_deg")) s.camera.fovYDeg = r.number(c["fov_y_deg"], "camera.fov_y_deg", 1, 179);
+    glm::dvec3 forward = s.camera.lookAt - s.camera.position;
+    if (glm::length(forward) <= 0) r.fail("camera.look_at", "must differ from camera.position");
+    if (glm::length(glm::cross(forward, s.camera.up)) <= 1e-12 * glm::length(forward) * glm::length(s.camera.up))
+        r.fail("camera.up", "must not be parallel to the viewing direction");
+
+    if (j.contains("sky")) {
+        const json& k = j["sky"];
+        r.onlyKeys(k, "sky", {"image", "top", "horizon", "bottom"});
+        if (k.contains("image")) {
+            std::filesystem::path image = r.string(k["image"], "sky.image");
+            // Relative to the scene file first, then to bin/assets/.
+            std::filesystem::path besideScene = std::filesystem::path(path).parent_path() / image;
+            std::filesystem::path inAssets = executableDir() / "assets" / image;
+            if (std::filesystem::exists(besideScene)) s.sky.image = besideScene.string();
+            else if (std::filesystem::exists(inAssets)) s.sky.image = inAssets.string();
+            else r.fail("sky.image", "no such file: " + image.string());
+        }
+        if (k.contains("top")) s.sky.top = r.vec3(k["top"], "sky.top", 0, kHuge);
+        if (k.contains("horizon")) s.sky.horizon = r.vec3(k["horizon"], "sky.horizon", 0, kHuge);
+        if (k.contains("bottom")) s.sky.bottom = r.vec3(k["bottom"], "sky.bottom", 0, kHuge);
+    }
+    if (j.contains("ambient")) s.ambient = r.vec3(j["ambient"], "ambient", 0, kHuge);
+
+    if (j.contains("lights")) {
+        if (!j["lights"].is_array()) r.fail("lights", "must be an array");
+        for (size_t i = 0; i < j["lights"].size(); ++i) {
+            const json& l = j["lights"][i];
+            std::string key = "lights[" + std::to_string(i) + "]";
+            r.onlyKeys(l, key, {"position", "intensity"});
+            PointLight light;
+            if (!l.contains("position")) r.fail(key + ".position", "missing");
+            light.position = r.vec3(l["position"], key + ".position");
+            if (l.contains("intensity")) light.intensity = r.vec3(l["intensity"], key + ".intensity", 0, kHuge);
+            s.lights.push_back(light);
+        }
+    }
+
+    if (!j.contains("materials") || !j["materials"].is_object() || j["materials"].empty())
+        r.fail("materials", "must be an object with at least one named material");
+    for (auto it = j["materials"].begin(); it != j["materials"].end(); ++it) {
+        std::string key = "materials." + it.key();
+        const json& m = it.value();
+        r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness"});
+        Material mat;
+        mat.name = it.key();
+        if (m.contains("ka")) mat.ka = r.vec3(m["ka"], key + ".ka", 0, 1);
+        if (m.contains("kd")) mat.kd = r.vec3(m["kd"], key + ".kd", 0, 1);
+        if (m.contains("ks")) mat.ks = r.vec3(m["ks"], key + ".ks", 0, 1);
+        if (m.contains("shininess")) mat.shininess = r.number(m["shininess"], key + ".shininess", 0, 1e6);
+        if (m.contains("reflectivity")) mat.reflectivity = r.number(m["reflectivity"], key + ".reflectivity", 0, 1);
+        if (m.contains("transmission")) mat.transmission = r.number(m["transmission"], key + ".transmission", 0, 1);
+        if (m.contains("ior")) mat.ior = r.number(m["ior"], key + ".ior", 1, 10);
+        if (m.contains("f0")) mat.f0 = r.number(m["f0"], key + ".f0", 0, 1);
+        if (m.contains("roughness")) mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
+        s.materials.push_back(mat);
+    }
+    auto materialIndex = [&](const json& v, const std::string& key) -> uint32_t {
+        std::string name = r.string(v, key);
+        for (size_t i = 0; i < s.materials.size(); ++i)
+            if (s.materials[i].name == name) return uint32_t(i);
+        r.fail(key, "no material named \"" + name + "\"");
+    };
+
+    if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
+        r.fail("objects", "must be an array with at least one object");
+    for (size_t i = 0; i < j["objects"].size(); ++i) {
+        const json& o = j["objects"][i];
+        std::string key = "objects[" + std::to_string(i) + "]";
+        if (!o.is_object() || !o.contains("type")) r.fail(key + ".type", "missing (sphere or quad)");
+        std::string type = r.string(o["type"], key + ".type");
+        Object obj;
+        if (!o.contains("material")) r.fail(key + ".material", "missing");
+        obj.material = materialIndex(o["material"], key + ".material");
+        if (type == "sphere") {
+            r.onlyKeys(o, key, {"type", "material", "center", "radius", "transform", "moving"});
+            obj.type = ShapeType::Sphere;
+            if (o.contains("center")) obj.center = r.vec3(o["center"], key + ".center");
+            if (!o.contains("radius")) r.fail(key + ".radius", "missing");
+            obj.radius = r.number(o["radius"], key + ".radius", 1e-12, kHuge);
+            obj.transform = glm::scale(glm::translate(glm::dmat4(1.0), obj.center), glm::dvec3(obj.radius));
+        } else if (type == "quad") {
+            r.onlyKeys(o, key, {"type", "material", "center", "u", "v", "transform", "moving"});
+            obj.type = ShapeType::Quad;
+            if (o.contains("center")) obj.center = r.vec3(o["center"], key + ".center");
+            if (!o.contains("u") || !o.contains("v")) r.fail(key + ".u", "a quad needs half-edges u and v");
+            obj.u = r.vec3(o["u"], key + ".u");
+            obj.v = r.vec3(o["v"], key + ".v");
+            glm::dvec3 n = glm::cross(obj.u, obj.v);  // the quad's front side faces u x v
+            if (glm::length(n) <= 1e-12 * glm::length(obj.u) * glm::length(obj.v))
+                r.fail(key + ".v", "u and v must not be parallel or zero");
+            // Unit quad [-1,1] x {0} x [-1,1], front +y: local x -> u, y -> the
+            // normal, z -> -v (a right-handed frame, so no mirroring).
+            obj.transform = glm::dmat4(glm::dvec4(obj.u, 0), glm::dvec4(glm::normalize(n), 0), glm::dvec4(-obj.v, 0),
+                                       glm::dvec4(obj.center, 1));
+        } else {
+            r.fail(key + ".type", "\"" + type + "\" is not a shape (sphere or quad)");
+        }
+        if (o.contains("transform")) obj.transform = readTransform(r, o["transform"], key + ".transform") * obj.transform;
+        if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
+        s.objects.push_back(obj);
+    }
+    return s;
+}
+
+}  // namespace rg

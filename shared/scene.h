@@ -1,0 +1,78 @@
+// Scenes are data (chapter 03): a JSON file with the camera, the sky, the
+// lights, the materials and the objects. docs/scene-format.md documents every
+// key. Everything is double precision here; the GPU gets floats from it and
+// the CPU reference renderer uses it as it is.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+struct Camera {
+    glm::dvec3 position{0, 1, 5};
+    glm::dvec3 lookAt{0, 1, 0};
+    glm::dvec3 up{0, 1, 0};
+    double fovYDeg = 45.0;  // vertical field of view
+};
+
+struct Sky {
+    std::string image;  // equirectangular image, sRGB (empty: the gradient below)
+    glm::dvec3 top{0.25, 0.45, 0.85}, horizon{0.8, 0.85, 0.9}, bottom{0.2, 0.18, 0.15};  // linear
+};
+
+struct PointLight {
+    glm::dvec3 position{0, 5, 0};
+    glm::dvec3 intensity{1, 1, 1};  // linear radiance scale I_i
+};
+
+// Every parameter of chapters 05-11; each chapter reads what it needs.
+struct Material {
+    std::string name;
+    glm::dvec3 ka{1, 1, 1};        // ambient coefficient (ch 05), times the scene's ambient light
+    glm::dvec3 kd{0.7, 0.7, 0.7};  // diffuse (ch 06); chapter 04 shows it as the flat colour
+    glm::dvec3 ks{0, 0, 0};        // specular (ch 07)
+    double shininess = 32;         // Blinn-Phong exponent (ch 07)
+    double reflectivity = 0;       // mirror fraction (ch 08)
+    double transmission = 0;       // 1: a dielectric that refracts (ch 10)
+    double ior = 1.517;            // index of refraction (ch 09-10)
+    double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
+    double roughness = 0;          // lobe width for rough reflection (ch 11)
+};
+
+enum class ShapeType { Sphere, Quad };
+
+// Every object becomes one instance of a unit shape (a sphere of radius 1 at
+// the origin, or the quad [-1,1] x {0} x [-1,1]) with a world transform.
+struct Object {
+    ShapeType type = ShapeType::Sphere;
+    uint32_t material = 0;
+    bool moving = false;     // chapter 03 moves it every frame by its TLAS transform alone
+    glm::dmat4 transform{1.0};  // object -> world
+    // As written in the file (the reference renderer intersects these directly):
+    glm::dvec3 center{0};
+    double radius = 1;       // spheres
+    glm::dvec3 u{1, 0, 0}, v{0, 0, 1};  // quads: half-edges, the quad is center +- u +- v
+};
+
+struct Scene {
+    std::string path;
+    Camera camera;
+    Sky sky;
+    glm::dvec3 ambient{0.1, 0.1, 0.1};  // I_a (ch 05)
+    std::vector<PointLight> lights;
+    std::vector<Material> materials;
+    std::vector<Object> objects;
+    double scale = 1.0;  // the scene's size, for hard cases at 1e-3 and 1e5 (see scene-format.md)
+};
+
+// Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
+// the file and the key for a missing file, bad JSON, an unknown key, a
+// missing value or one out of range.
+Scene loadScene(const std::string& path);
+
+// The chapter's default scene: bin/assets/scenes/<name>.json.
+std::string defaultScenePath(const std::string& name);
+
+}  // namespace rg
