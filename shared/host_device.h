@@ -68,6 +68,75 @@ RG_INLINE vec3 instanceColor(uint i) {
     return vec3(float(k & 1u), float((k >> 1u) & 1u), float((k >> 2u) & 1u)) * 0.6f + vec3(0.25f);
 }
 
+// ---- Chapters 04-11: the ray tracing pipeline ------------------------------
+#define RT_BINDING_TLAS 0       // the scene's top-level acceleration structure
+#define RT_BINDING_TARGET 1     // storage image, rgba32f, linear radiance
+#define RT_BINDING_CAMERA 2     // uniform RtCamera
+#define RT_BINDING_OBJECTS 3    // GpuObject[], indexed by gl_InstanceCustomIndexEXT
+#define RT_BINDING_MATERIALS 4  // GpuMaterial[]
+#define RT_BINDING_LIGHTS 5     // GpuLight[]
+#define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
+#define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
+
+#define SHAPE_SPHERE 0u
+#define SHAPE_QUAD 1u
+
+// Hit groups in the SBT: one per shape and ray type (see shared/sbt.h).
+#define HIT_GROUP_QUAD 0u
+#define HIT_GROUP_SPHERE 1u
+#define RAY_TYPE_PRIMARY 0u  // sbtRecordOffset of camera and bounce rays
+#define RAY_TYPE_SHADOW 2u   // sbtRecordOffset of shadow rays (chapter 06 on)
+#define MISS_SKY 0u
+#define MISS_SHADOW 1u
+
+struct RtCamera {
+    mat4 viewInverse;  // camera -> world
+    mat4 projInverse;  // clip -> camera (Vulkan clip space: y points down)
+    vec4 skyTop;       // gradient sky when there is no sky image
+    vec4 skyHorizon;
+    vec4 skyBottom;
+    vec4 ambient;      // I_a (chapter 05)
+    uvec4 counts;      // sky width, sky height (0: gradient), light count, object count
+    vec4 scale;        // x: the scene's size (for offsets); y, z, w unused
+};
+RG_SIZE(RtCamera, 224);
+
+struct GpuObject {
+    uint shape;     // SHAPE_*
+    uint material;  // index into materials
+    uint pad0;
+    uint pad1;
+};
+RG_SIZE(GpuObject, 16);
+
+struct GpuMaterial {
+    vec4 ka;
+    vec4 kd;
+    vec4 ks;
+    vec4 params;  // shininess, reflectivity, transmission, ior
+    vec4 extra;   // f0, roughness, unused, unused
+};
+RG_SIZE(GpuMaterial, 80);
+
+struct GpuLight {
+    vec4 position;
+    vec4 intensity;
+};
+RG_SIZE(GpuLight, 32);
+
+// Per frame, as push constants: nothing a frame in flight still reads changes.
+struct RtPush {
+    uint frame;
+    uint maxDepth;       // bounce limit (chapter 08 on)
+    uint samplesPerHit;  // rough reflection rays per hit (chapter 11)
+    uint pattern;        // sample pattern (chapter 11)
+    uint fresnelMode;    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter 09)
+    uint accumulated;    // frames already averaged into the target (chapter 11)
+    uint pad0;
+    uint pad1;
+};
+RG_SIZE(RtPush, 32);
+
 #ifdef __cplusplus
 }  // namespace rg::gpu
 #endif

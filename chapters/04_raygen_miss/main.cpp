@@ -1,0 +1,52 @@
+// Chapter 04 - Ray generation and miss (thesis 2.2.2-2.2.3).
+// The first rays: a ray tracing pipeline (ray generation, miss, closest-hit
+// and the sphere's intersection shader), its shader binding table, and one
+// camera ray per pixel through chapter 03's acceleration structures. A hit
+// shows the surface normal; a miss shows the sky image. --reference renders
+// the same picture on the CPU in double precision and reports the error.
+#include "app.h"
+#include "frame_loop.h"
+#include "host_device.h"
+#include "rt_pipeline.h"
+#include "rt_report.h"
+#include "rt_scene.h"
+#include "scene.h"
+
+int main(int argc, char** argv) {
+    rg::Options opts;
+    auto extra = [](CLI::App& app, rg::Options& o) { rg::addSceneOptions(app, o, true); };
+    if (auto exit = rg::parseCommandLine(argc, argv, "04_raygen_miss",
+                                         "RayGlass chapter 04: ray generation, miss, the SBT", opts, extra))
+        return *exit;
+    return rg::runChapter(opts, [&] {
+        rg::Scene scene = rg::loadScene(opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene);
+        rg::App app;
+        rg::initApp(app, opts, "RayGlass 04: ray generation and miss");
+        rg::Image target = rg::createImage2D(app.gpu, app.deletion, opts.width, opts.height,
+                                             VK_FORMAT_R32G32B32A32_SFLOAT,
+                                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        // Chapter 03's structures, plus the buffers the shaders read.
+        rg::RtScene rt = rg::uploadScene(app.gpu, app.deletion, scene, target);
+
+        // [region shaders]
+        // The SBT's records, in order: raygen | miss 0 | hit 0 (quads), hit 1 (spheres).
+        rg::RtShaders shaders{
+            .raygen = "04_raygen_miss/raygen.rgen",
+            .miss = {"common/sky.rmiss"},
+            .hitGroups = {{.closestHit = "common/quad.rchit"},                   // triangles
+                          {.closestHit = "common/sphere.rchit",
+                           .intersection = "common/sphere.rint"}},               // procedural
+        };
+        rg::RtPipeline pipeline = rg::createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout,
+                                                       sizeof(rg::gpu::RtPush), shaders);
+        // [end]
+
+        rg::FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                           app.deletion);
+        rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
+            rg::gpu::RtPush push{.frame = frame};
+            rg::recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
+        });
+        rg::finishRtRun(app, opts, scene, rt, target, times, rg::ReferenceStage::Normals);
+    });
+}

@@ -1,0 +1,13 @@
+// The camera ray of thesis 2.2.2, through the pixel's centre.
+#ifndef CAMERA_GLSL
+#define CAMERA_GLSL
+// [region camera_ray]
+void cameraRay(uvec2 pixel, uvec2 size, out vec3 origin, out vec3 direction) {
+    vec2 pixelCenter = vec2(pixel) + 0.5;                     // not the corner
+    vec2 ndc = pixelCenter / vec2(size) * 2.0 - 1.0;          // -1..1; y = -1 is the top row
+    origin = (camera.viewInverse * vec4(0, 0, 0, 1)).xyz;
+    vec4 target = camera.projInverse * vec4(ndc.x, ndc.y, 1, 1);  // Vulkan clip space: y down
+    direction = (camera.viewInverse * vec4(normalize(target.xyz), 0)).xyz;
+}
+// [end]
+#endif

@@ -1,0 +1,15 @@
+// What a traced ray brings back to the ray generation shader, which does all
+// shading (bounces loop there; closest-hit shaders only describe the hit).
+#ifndef PAYLOAD_GLSL
+#define PAYLOAD_GLSL
+struct HitPayload {
+    vec3 radiance;   // on a miss: the sky in the ray's direction
+    float t;         // hit distance along the (unit) ray direction; < 0 on a miss
+    vec3 normal;     // world-space unit geometric normal, pointing out of the shape
+    uint material;
+    uint object;
+    uint frontFace;  // 1: the ray hit the outside (front) of the surface
+    uint pad0;
+    uint pad1;
+};
+#endif

@@ -1,0 +1,16 @@
+#version 460
+// Closest-hit for quads (triangles): the unit quad's normal is +y.
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "rt_bindings.glsl"
+#include "payload.glsl"
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
+
+void main() {
+    payload.normal = normalize(vec3(0.0, 1.0, 0.0) * mat3(gl_WorldToObjectEXT));
+    payload.t = gl_HitTEXT;
+    payload.object = gl_InstanceCustomIndexEXT;
+    payload.material = objects[gl_InstanceCustomIndexEXT].material;
+    payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
+}

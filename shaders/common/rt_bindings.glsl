@@ -1,0 +1,17 @@
+// The descriptor set every ray tracing chapter binds (host_device.h).
+#ifndef RT_BINDINGS_GLSL
+#define RT_BINDINGS_GLSL
+#extension GL_EXT_ray_tracing : require
+#include "host_device.h"
+
+layout(binding = RT_BINDING_TLAS) uniform accelerationStructureEXT tlas;
+layout(binding = RT_BINDING_CAMERA, std140) uniform CameraBlock { RtCamera camera; };
+layout(binding = RT_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
+layout(binding = RT_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(binding = RT_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
+layout(binding = RT_BINDING_SKY, std430) readonly buffer Sky { vec4 skyTexels[]; };
+layout(push_constant) uniform PushBlock { RtPush push; };
+
+const float kPi = 3.14159265358979323846;
+const float kInfinity = 3.0e38;
+#endif

@@ -1,0 +1,18 @@
+#version 460
+// Closest-hit for spheres: describe the hit; raygen shades it.
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "rt_bindings.glsl"
+#include "payload.glsl"
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
+hitAttributeEXT vec3 objectNormal;
+
+void main() {
+    // Normals transform with the inverse transpose: n * M^-1 = (M^-T) n.
+    payload.normal = normalize(objectNormal * mat3(gl_WorldToObjectEXT));
+    payload.t = gl_HitTEXT;
+    payload.object = gl_InstanceCustomIndexEXT;
+    payload.material = objects[gl_InstanceCustomIndexEXT].material;
+    payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
+}

@@ -1,0 +1,190 @@
+#include "reference.h"
+
+#include "display.h"
+#include "rt_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace rg {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, double& t1) {
+    // |o + t d|^2 = 1: a t^2 + 2 h t + c = 0 with h = o.d. The discriminant is
+    // taken as a (1 - |o - (o.d / a) d|^2) (no cancellation), and the smaller
+    // root in magnitude as c / q (no subtraction of near-equal numbers).
+    double a = glm::dot(d, d), h = glm::dot(o, d), c = glm::dot(o, o) - 1.0;
+    glm::dvec3 perpendicular = o - (h / a) * d;
+    double disc = a * (1.0 - glm::dot(perpendicular, perpendicular));
+    if (disc < 0) return false;
+    double q = -(h + std::copysign(std::sqrt(disc), h));
+    if (q == 0) {
+        t0 = t1 = 0;
+        return c == 0;
+    }
+    t0 = c / q;
+    t1 = q / a;
+    if (t0 > t1) std::swap(t0, t1);
+    return true;
+}
+
+ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
+    for (const auto& o : scene.objects) worldToObject_.push_back(glm::inverse(o.transform));
+    SkyTexels sky = loadSky(scene);
+    skyWidth_ = sky.width;
+    skyHeight_ = sky.height;
+    sky_.resize(size_t(sky.width) * sky.height * 3);
+    for (size_t i = 0; i < size_t(sky.width) * sky.height; ++i)
+        for (int c = 0; c < 3; ++c) sky_[3 * i + c] = sky.rgba[4 * i + c];
+}
+
+ReferenceHit ReferenceRenderer::trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                                      double tMax) const {
+    ReferenceHit best;
+    for (uint32_t i = 0; i < scene_.objects.size(); ++i) {
+        const Object& obj = scene_.objects[i];
+        const glm::dmat4& inv = worldToObject_[i];
+        glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
+        glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
+        double t = -1;
+        glm::dvec3 localNormal;
+        bool front = true;
+        if (obj.type == ShapeType::Sphere) {
+            double t0, t1;
+            if (!referenceUnitSphere(o, d, t0, t1)) continue;
+            if (t0 > tMin && t0 < tMax) t = t0;
+            else if (t1 > tMin && t1 < tMax) { t = t1; front = false; }
+            else continue;
+            localNormal = o + t * d;
+        } else {
+            if (d.y == 0) continue;  // parallel to the plane
+            t = -o.y / d.y;
+            if (!(t > tMin && t < tMax)) continue;
+            glm::dvec3 p = o + t * d;
+            if (std::abs(p.x) > 1 || std::abs(p.z) > 1) continue;
+            localNormal = {0, 1, 0};
+        }
+        if (best.t >= 0 && t >= best.t) continue;
+        best.t = t;
+        best.object = i;
+        best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
+        best.frontFace = obj.type == ShapeType::Sphere ? front : glm::dot(best.normal, direction) < 0;
+    }
+    return best;
+}
+
+glm::dvec3 ReferenceRenderer::sky(const glm::dvec3& dir) const {
+    glm::dvec3 d = glm::normalize(dir);
+    if (skyWidth_ == 0)
+        return d.y >= 0 ? glm::mix(scene_.sky.horizon, scene_.sky.top, d.y)
+                        : glm::mix(scene_.sky.horizon, scene_.sky.bottom, -d.y);
+    double u = 0.5 + std::atan2(d.x, -d.z) / (2 * kPi);
+    double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
+    double x = u * skyWidth_ - 0.5, y = v * skyHeight_ - 0.5;
+    double fx0 = std::floor(x), fy0 = std::floor(y);
+    double fx = x - fx0, fy = y - fy0;
+    auto texel = [&](long tx, long ty) {
+        long w = skyWidth_, h = skyHeight_;
+        tx = ((tx % w) + w) % w;
+        ty = std::clamp(ty, 0L, h - 1);
+        const double* p = &sky_[3 * (size_t(ty) * w + tx)];
+        return glm::dvec3(p[0], p[1], p[2]);
+    };
+    long x0 = long(fx0), y0 = long(fy0);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx),
+                    fy);
+}
+
+void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
+                                  glm::dvec3& direction) const {
+    // A camera basis, not matrices: forward, right, up from look-at and up.
+    const Camera& c = scene_.camera;
+    glm::dvec3 forward = glm::normalize(c.lookAt - c.position);
+    glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+    glm::dvec3 up = glm::cross(right, forward);
+    double tanHalf = std::tan(glm::radians(c.fovYDeg) / 2), aspect = double(width) / height;
+    double sx = ((x + 0.5) / width * 2 - 1) * tanHalf * aspect;
+    double sy = (1 - (y + 0.5) / height * 2) * tanHalf;  // the top row looks up
+    origin = c.position;
+    direction = glm::normalize(forward + sx * right + sy * up);
+}
+
+glm::dvec3 ReferenceRenderer::shade(ReferenceStage stage, uint32_t x, uint32_t y, uint32_t width,
+                                    uint32_t height) const {
+    glm::dvec3 origin, direction;
+    cameraRay(x, y, width, height, origin, direction);
+    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
+    if (hit.t < 0) return sky(direction);
+    switch (stage) {
+        case ReferenceStage::Normals: {
+            glm::dvec3 n = glm::dot(hit.normal, direction) < 0 ? hit.normal : -hit.normal;
+            return 0.5 * n + 0.5;
+        }
+    }
+    return {0, 0, 0};
+}
+
+FloatImage ReferenceRenderer::render(ReferenceStage stage, uint32_t width, uint32_t height) const {
+    FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> workers;
+    for (unsigned t = 0; t < threads; ++t)
+        workers.emplace_back([&, t] {
+            for (uint32_t y = t; y < height; y += threads)
+                for (uint32_t x = 0; x < width; ++x) {
+                    glm::dvec3 c = shade(stage, x, y, width, height);
+                    float* p = &image.rgba[4 * (size_t(y) * width + x)];
+                    p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
+                }
+        });
+    for (auto& w : workers) w.join();
+    return image;
+}
+
+ImageError compareImages(const FloatImage& test, const FloatImage& reference, FloatImage* heatMap) {
+    ImageError e;
+    size_t n = size_t(test.width) * test.height;
+    if (heatMap) *heatMap = {test.width, test.height, std::vector<float>(n * 4, 1.0f)};
+    double sumSq = 0, sumSqDisplay = 0;
+    uint64_t over = 0;
+    for (size_t i = 0; i < n; ++i) {
+        double worstDisplay = 0;
+        bool finite = true;
+        for (int c = 0; c < 3; ++c) {
+            double a = test.rgba[4 * i + c], b = reference.rgba[4 * i + c];
+            if (!std::isfinite(a)) {
+                finite = false;
+                continue;
+            }
+            double diff = a - b;
+            sumSq += diff * diff;
+            e.maxAbs = std::max(e.maxAbs, std::abs(diff));
+            double dd = linearToSrgb(a) - linearToSrgb(b);
+            sumSqDisplay += dd * dd;
+            worstDisplay = std::max(worstDisplay, std::abs(dd));
+        }
+        if (!finite) {
+            e.nonFinite++;
+            worstDisplay = 1;
+        }
+        if (worstDisplay > 1.0 / 255.0 + 1e-12) over++;
+        if (heatMap) {  // black -> red -> yellow -> white over 0 .. 8/255
+            double h = std::min(1.0, worstDisplay * 255.0 / 8.0) * 3;
+            float* p = &heatMap->rgba[4 * i];
+            p[0] = float(std::clamp(h, 0.0, 1.0));
+            p[1] = float(std::clamp(h - 1, 0.0, 1.0));
+            p[2] = float(std::clamp(h - 2, 0.0, 1.0));
+        }
+    }
+    e.rmse = std::sqrt(sumSq / double(3 * n));
+    e.fracOver1_255 = double(over) / double(n);
+    double mseDisplay = sumSqDisplay / double(3 * n);
+    e.psnrDb = mseDisplay > 0 ? 10 * std::log10(1.0 / mseDisplay) : 999.0;
+    return e;
+}
+
+}  // namespace rg

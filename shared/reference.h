@@ -1,0 +1,57 @@
+// The CPU reference renderer: the same scene, camera and shading as the GPU
+// chapters, written again in double precision with none of the GPU's code
+// (its own camera basis, intersections and sky filter), so that comparing
+// the two finds errors in either. One ray per pixel centre.
+#pragma once
+#include "output.h"
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+namespace rg {
+
+// What the reference computes: the shading of one chapter.
+enum class ReferenceStage { Normals = 4 };
+
+struct ReferenceHit {
+    double t = -1;          // < 0: miss
+    glm::dvec3 normal{0};   // world, unit, out of the shape
+    uint32_t object = 0;
+    bool frontFace = true;
+};
+
+class ReferenceRenderer {
+public:
+    explicit ReferenceRenderer(const Scene& scene);
+    // The closest hit along origin + t * direction with t in (tMin, tMax).
+    ReferenceHit trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
+    glm::dvec3 sky(const glm::dvec3& direction) const;
+    void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
+                   glm::dvec3& direction) const;
+    glm::dvec3 shade(ReferenceStage stage, uint32_t x, uint32_t y, uint32_t width, uint32_t height) const;
+    // Renders every pixel on all cores.
+    FloatImage render(ReferenceStage stage, uint32_t width, uint32_t height) const;
+
+private:
+    const Scene& scene_;
+    std::vector<glm::dmat4> worldToObject_;
+    uint32_t skyWidth_ = 0, skyHeight_ = 0;
+    std::vector<double> sky_;  // linear RGB
+};
+
+// Roots t0 <= t1 of |o + t d| = 1, in double (the reference's own form).
+bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, double& t1);
+
+struct ImageError {
+    double rmse = 0;            // linear values, over all pixels and RGB channels
+    double maxAbs = 0;          // largest linear difference
+    double fracOver1_255 = 0;   // share of pixels whose display value differs by more than 1/255
+    double psnrDb = 0;          // of the display values
+    uint64_t nonFinite = 0;     // NaN or Inf pixels in the tested image
+};
+
+// Compares `test` against `reference`; writes a heat map (black: equal,
+// red to yellow to white: up to 8/255 of display difference) when asked.
+ImageError compareImages(const FloatImage& test, const FloatImage& reference, FloatImage* heatMap);
+
+}  // namespace rg

@@ -1,0 +1,43 @@
+// The ray tracing pipeline and its shader binding table (chapter 04).
+#pragma once
+#include "context.h"
+#include "resources.h"
+#include "sbt.h"
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+// A hit group: closest-hit and intersection shaders (either may be empty;
+// an intersection shader makes it a procedural group, for AABBs).
+struct HitGroup {
+    std::string closestHit;
+    std::string intersection;
+};
+
+struct RtShaders {
+    std::string raygen;
+    std::vector<std::string> miss;
+    std::vector<HitGroup> hitGroups;
+};
+
+struct RtPipeline {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    Buffer sbt;
+    SbtLayout sbtLayout;
+    VkStridedDeviceAddressRegionKHR raygen{}, miss{}, hit{}, callable{};
+    uint32_t maxRecursion = 1;
+};
+
+// maxRecursion: rays traced from raygen only need 1 (bounces loop in raygen).
+RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
+                            uint32_t pushConstantBytes, const RtShaders& shaders, uint32_t maxRecursion = 1);
+
+// Binds the pipeline and its set, pushes constants, traces one ray
+// generation invocation per pixel.
+void recordTrace(VkCommandBuffer cmd, const RtPipeline& pipeline, VkDescriptorSet set, const void* push,
+                 uint32_t pushBytes, uint32_t width, uint32_t height);
+
+}  // namespace rg

@@ -1,0 +1,51 @@
+#include "rt_report.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace rg {
+
+nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
+                           const Image& target, const FrameTimes& times, ReferenceStage stage) {
+    FloatImage image = readImage(app.gpu, target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
+    std::filesystem::path png(opts.output);
+    writePng(opts.output, image);
+    writePfm(std::filesystem::path(png).replace_extension(".pfm").string(), image);
+
+    nlohmann::json report = makeReport(opts, app.gpu, times);
+    report["scene"] = scene.path;
+    uint64_t rays = countRays(app.gpu, rt);  // counted by the ray generation shader, last frame
+    double medianMs = median(times.gpuMs);
+    report["rays_per_frame"] = rays;
+    report["mrays_per_s"] = medianMs > 0 ? double(rays) / (medianMs * 1e-3) / 1e6 : 0.0;
+    uint64_t nonFinite = 0;
+    for (float v : image.rgba) nonFinite += !std::isfinite(v);
+    report["non_finite_values"] = nonFinite;
+    std::printf("GPU median %.3f ms over %zu frames, %llu rays per frame, %.1f Mrays/s\n", medianMs,
+                times.gpuMs.size(), (unsigned long long)rays, report["mrays_per_s"].get<double>());
+
+    if (opts.reference) {
+        auto start = std::chrono::steady_clock::now();
+        ReferenceRenderer reference(scene);
+        FloatImage expected = reference.render(stage, image.width, image.height);
+        double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        FloatImage heat;
+        ImageError e = compareImages(image, expected, &heat);
+        std::string stem = (png.parent_path() / png.stem()).string();
+        writePng(stem + "_reference.png", expected);
+        writePng(stem + "_error.png", heat);
+        report["error"] = {{"rmse", e.rmse}, {"max_abs", e.maxAbs}, {"frac_over_1_255", e.fracOver1_255},
+                           {"psnr_db", e.psnrDb}, {"non_finite_pixels", e.nonFinite},
+                           {"reference_cpu_ms", cpuMs}, {"heat_map", stem + "_error.png"}};
+        std::printf("vs CPU reference: rmse %.2e, max %.2e, %.4f%% of pixels off by > 1/255, PSNR %.1f dB\n", e.rmse,
+                    e.maxAbs, 100 * e.fracOver1_255, e.psnrDb);
+    }
+    report["validation_messages"] = validationMessageCount().load();
+    writeReport(opts.report, report);
+    std::printf("Wrote %s and %s\n", opts.output.c_str(), opts.report.c_str());
+    return report;
+}
+
+}  // namespace rg

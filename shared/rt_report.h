@@ -1,0 +1,15 @@
+// The end of every ray tracing chapter's run: read the image back, write the
+// PNG (and the linear PFM beside it), count the rays, compare with the CPU
+// reference when --reference asks, and write the report.
+#pragma once
+#include "app.h"
+#include "output.h"
+#include "reference.h"
+#include "rt_scene.h"
+
+namespace rg {
+
+nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
+                           const Image& target, const FrameTimes& times, ReferenceStage stage);
+
+}  // namespace rg

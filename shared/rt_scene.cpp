@@ -1,0 +1,139 @@
+#include "rt_scene.h"
+
+#include "app.h"
+#include "display.h"
+#include "host_device.h"
+#include "vk_check.h"
+
+#include <stb_image.h>
+
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace rg {
+
+SkyTexels loadSky(const Scene& scene) {
+    SkyTexels sky;
+    if (scene.sky.image.empty()) return sky;
+    int w = 0, h = 0, n = 0;
+    unsigned char* data = stbi_load(scene.sky.image.c_str(), &w, &h, &n, 4);
+    if (!data) throw InputError(scene.path + ": sky.image: cannot read " + scene.sky.image + " (" + stbi_failure_reason() + ")");
+    sky.width = uint32_t(w);
+    sky.height = uint32_t(h);
+    sky.rgba.resize(size_t(w) * h * 4);
+    for (size_t i = 0; i < size_t(w) * h; ++i) {
+        for (int c = 0; c < 3; ++c) sky.rgba[4 * i + c] = float(srgbToLinear(data[4 * i + c] / 255.0));
+        sky.rgba[4 * i + 3] = 1.0f;
+    }
+    stbi_image_free(data);
+    return sky;
+}
+
+void cameraMatrices(const Camera& camera, double aspect, glm::mat4& viewInverse, glm::mat4& projInverse) {
+    glm::dmat4 view = glm::lookAt(camera.position, camera.lookAt, camera.up);
+    glm::dmat4 proj = glm::perspective(glm::radians(camera.fovYDeg), aspect, 0.1, 100.0);
+    proj[1][1] *= -1;  // Vulkan's clip space y points down; the image's top row looks up
+    viewInverse = glm::mat4(glm::inverse(view));
+    projInverse = glm::mat4(glm::inverse(proj));
+}
+
+namespace {
+template <typename T>
+Buffer storage(const Gpu& gpu, DeletionQueue& deletion, const std::vector<T>& data) {
+    std::vector<T> nonEmpty = data.empty() ? std::vector<T>(1) : data;  // a binding needs a buffer
+    return createDeviceBuffer(gpu, deletion, nonEmpty.data(), nonEmpty.size() * sizeof(T),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+glm::vec4 v4(const glm::dvec3& v, double w = 0) { return glm::vec4(glm::dvec4(v, w)); }
+}  // namespace
+
+RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target) {
+    RtScene rt;
+    rt.width = target.extent.width;
+    rt.height = target.extent.height;
+    rt.shapes = buildUnitShapes(gpu, deletion);
+    rt.instances = makeInstances(scene, rt.shapes);
+    rt.tlas = buildTlas(gpu, deletion, rt.instances);
+
+    SkyTexels sky = loadSky(scene);
+    gpu::RtCamera camera{};
+    cameraMatrices(scene.camera, double(rt.width) / rt.height, camera.viewInverse, camera.projInverse);
+    camera.skyTop = v4(scene.sky.top);
+    camera.skyHorizon = v4(scene.sky.horizon);
+    camera.skyBottom = v4(scene.sky.bottom);
+    camera.ambient = v4(scene.ambient);
+    camera.counts = {sky.width, sky.height, uint32_t(scene.lights.size()), uint32_t(scene.objects.size())};
+    camera.scale = {float(scene.scale), 0, 0, 0};
+    rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+
+    std::vector<gpu::GpuObject> objects;
+    for (const auto& o : scene.objects)
+        objects.push_back({o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
+    std::vector<gpu::GpuMaterial> materials;
+    for (const auto& m : scene.materials)
+        materials.push_back({v4(m.ka), v4(m.kd), v4(m.ks),
+                             glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
+                             glm::vec4(float(m.f0), float(m.roughness), 0, 0)});
+    std::vector<gpu::GpuLight> lights;
+    for (const auto& l : scene.lights) lights.push_back({v4(l.position, 1), v4(l.intensity)});
+    rt.objects = storage(gpu, deletion, objects);
+    rt.materials = storage(gpu, deletion, materials);
+    rt.lights = storage(gpu, deletion, lights);
+    rt.sky = storage(gpu, deletion, sky.rgba);
+    rt.rayCount = createBuffer(gpu, deletion, VkDeviceSize(rt.width) * rt.height * sizeof(uint32_t),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+
+    const VkShaderStageFlags rt_stages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
+                                         VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
+    rt.descriptors = createDescriptorSet(gpu, deletion, {
+        {RT_BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+        {RT_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+        {RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rt_stages},
+        {RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+        {RT_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+        {RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+        {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+        {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+    });
+    VkDescriptorSet set = rt.descriptors.set;
+    writeAccelerationStructure(gpu, set, RT_BINDING_TLAS, rt.tlas.as.handle);
+    writeStorageImage(gpu, set, RT_BINDING_TARGET, target.view);
+    writeBuffer(gpu, set, RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rt.camera);
+    writeBuffer(gpu, set, RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.objects);
+    writeBuffer(gpu, set, RT_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.materials);
+    writeBuffer(gpu, set, RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.lights);
+    writeBuffer(gpu, set, RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.sky);
+    writeBuffer(gpu, set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
+    return rt;
+}
+
+uint64_t countRays(const Gpu& gpu, const RtScene& scene) {
+    DeletionQueue local;
+    VkDeviceSize bytes = scene.rayCount.size;
+    Buffer host = createHostBuffer(gpu, local, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    submitOnce(gpu, [&](VkCommandBuffer cmd) {
+        VkMemoryBarrier written{
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+            .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT,
+        };
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
+                             &written, 0, nullptr, 0, nullptr);
+        VkBufferCopy region{.size = bytes};
+        vkCmdCopyBuffer(cmd, scene.rayCount.handle, host.handle, 1, &region);
+        VkMemoryBarrier toHost{
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+            .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+        };
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                             nullptr, 0, nullptr);
+    });
+    const uint32_t* counts = static_cast<const uint32_t*>(host.mapped);
+    uint64_t total = 0;
+    for (size_t i = 0; i < bytes / sizeof(uint32_t); ++i) total += counts[i];
+    return total;
+}
+
+}  // namespace rg

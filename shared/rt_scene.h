@@ -1,0 +1,40 @@
+// A scene on the GPU for ray tracing (chapter 04): the acceleration
+// structures of chapter 03 plus the buffers the shaders read, bound in one
+// descriptor set (bindings in host_device.h).
+#pragma once
+#include "accel.h"
+#include "descriptors.h"
+#include "resources.h"
+#include "scene.h"
+
+#include <vector>
+
+namespace rg {
+
+// The sky as linear RGBA floats (an image file decoded from sRGB, or none).
+struct SkyTexels {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;
+};
+SkyTexels loadSky(const Scene& scene);
+
+// Camera matrices as the thesis's ray generation shader uses them (2.2.2):
+// view inverse, and the projection's inverse for Vulkan's y-down clip space.
+void cameraMatrices(const Camera& camera, double aspect, glm::mat4& viewInverse, glm::mat4& projInverse);
+
+struct RtScene {
+    UnitShapes shapes;
+    std::vector<VkAccelerationStructureInstanceKHR> instances;
+    Tlas tlas;
+    Buffer camera, objects, materials, lights, sky, rayCount;
+    DescriptorSet descriptors;
+    uint32_t width = 0, height = 0;
+};
+
+// Uploads everything and writes the descriptor set for `target`.
+RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target);
+
+// Sum of the per-pixel ray counts of the last frame (host readback).
+uint64_t countRays(const Gpu& gpu, const RtScene& scene);
+
+}  // namespace rg

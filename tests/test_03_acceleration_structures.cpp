@@ -1,0 +1,79 @@
+// Chapter 03: the statistics agree with the scene (one instance per object,
+// non-zero sizes, compaction never grows a BLAS), and the top view drawn from
+// the TLAS's instance buffer shows each instance where the host put it,
+// including the moving one after the last frame's refit.
+#include "harness.h"
+
+#include "host_device.h"
+
+#include <fstream>
+
+namespace {
+
+glm::vec3 expectedColor(uint32_t i) { return rg::gpu::instanceColor(i); }
+
+TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
+    const int w = 320, h = 180, frames = 37;
+    std::string dir = rgtest::outputDir("03");
+    rgtest::RunResult r = rgtest::run(RG_EXE_03, {"--headless", "--validation", "--width", std::to_string(w),
+                                                  "--height", std::to_string(h), "--frames", std::to_string(frames),
+                                                  "--output", dir + "/03.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/03.json");
+    rgtest::expectCleanReport(report, "03_acceleration_structures", w, h);
+
+    std::ifstream sceneFile(RG_SOURCE_DIR "/assets/scenes/default.json");
+    nlohmann::json scene = nlohmann::json::parse(sceneFile);
+    size_t objects = scene["objects"].size();
+    EXPECT_EQ(report["tlas"].value("instances", 0u), objects);
+    EXPECT_GT(report["tlas"].value("size_bytes", 0u), 0u);
+    ASSERT_EQ(report["blas"].size(), 2u);
+    for (const auto& blas : report["blas"]) {
+        EXPECT_GT(blas.value("size_bytes", 0u), 0u);
+        EXPECT_GT(blas.value("compacted_bytes", 0u), 0u);
+        EXPECT_LE(blas.value("compacted_bytes", 0u), blas.value("size_bytes", 0u));
+    }
+    EXPECT_EQ(report["top_view"].value("last_frame", 0), frames - 1);
+
+    // At the centre of each instance's box, the colour of the last instance
+    // (in drawing order) whose box covers that point.
+    rgtest::Png png = rgtest::readPng(dir + "/03.png");
+    ASSERT_EQ(png.width, w);
+    const auto& view = report["top_view"];
+    const auto& instances = report["instances"];
+    ASSERT_EQ(instances.size(), objects);
+    int moving = 0;
+    for (size_t i = 0; i < instances.size(); ++i) {
+        double cx = 0.5 * (instances[i]["box_min_xz"][0].get<double>() + instances[i]["box_max_xz"][0].get<double>());
+        double cz = 0.5 * (instances[i]["box_min_xz"][1].get<double>() + instances[i]["box_max_xz"][1].get<double>());
+        size_t top = 0;
+        for (size_t j = 0; j < instances.size(); ++j)
+            if (cx >= instances[j]["box_min_xz"][0].get<double>() && cx <= instances[j]["box_max_xz"][0].get<double>() &&
+                cz >= instances[j]["box_min_xz"][1].get<double>() && cz <= instances[j]["box_max_xz"][1].get<double>())
+                top = j;
+        int px = int((cx - view["x0"].get<double>()) / view["width"].get<double>() * w);
+        int py = int((cz - view["z0"].get<double>()) / view["depth"].get<double>() * h);
+        ASSERT_TRUE(px >= 0 && px < w && py >= 0 && py < h);
+        glm::vec3 want = expectedColor(uint32_t(top));
+        const uint8_t* p = png.at(px, py);
+        EXPECT_NEAR(p[0], rgtest::display8(want.r), 1) << "instance " << i;
+        EXPECT_NEAR(p[1], rgtest::display8(want.g), 1) << "instance " << i;
+        EXPECT_NEAR(p[2], rgtest::display8(want.b), 1) << "instance " << i;
+        moving += instances[i].value("moving", false);
+    }
+    EXPECT_EQ(moving, 1);
+}
+
+TEST(Chapter03Windowed, RefitsAndPresentsUnderXvfb) {
+    if (!std::getenv("DISPLAY")) {
+        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
+        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
+    }
+    std::string dir = rgtest::outputDir("03_window");
+    rgtest::RunResult r = rgtest::run(RG_EXE_03, {"--validation", "--width", "160", "--height", "90", "--frames", "20",
+                                                  "--output", dir + "/03.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(rgtest::readJson(dir + "/03.json").value("validation_messages", -1), 0);
+}
+
+}  // namespace

@@ -1,0 +1,56 @@
+// Chapter 04 against the CPU double-precision reference: at most 0.1% of the
+// pixels may differ by more than 1/255 in display value; every pixel traced
+// exactly one ray; no NaN; the sky's landmarks are where they belong.
+#include "harness.h"
+
+namespace {
+
+TEST(Chapter04, MatchesTheReference) {
+    const int w = 240, h = 136;
+    std::string dir = rgtest::outputDir("04");
+    rgtest::RunResult r = rgtest::run(RG_EXE_04, {"--headless", "--validation", "--reference", "--width",
+                                                  std::to_string(w), "--height", std::to_string(h), "--frames", "3",
+                                                  "--output", dir + "/04.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/04.json");
+    rgtest::expectCleanReport(report, "04_raygen_miss", w, h);
+    ASSERT_TRUE(report.contains("error")) << report.dump();
+    EXPECT_LE(report["error"].value("frac_over_1_255", 1.0), 0.001);
+    EXPECT_LE(report["error"].value("rmse", 1.0), 1e-3);
+    EXPECT_EQ(report["error"].value("non_finite_pixels", 1), 0);
+    EXPECT_EQ(report.value("non_finite_values", 1), 0);
+    EXPECT_EQ(report.value("rays_per_frame", 0), w * h);  // one camera ray per pixel, counted
+    EXPECT_GT(report.value("mrays_per_s", 0.0), 0.0);
+
+    // The reference and heat map are written beside the image.
+    rgtest::Png reference = rgtest::readPng(dir + "/04_reference.png");
+    EXPECT_EQ(reference.width, w);
+    rgtest::Png heat = rgtest::readPng(dir + "/04_error.png");
+    EXPECT_EQ(heat.width, w);
+
+    // The default camera looks down -z: the sky's blue landmark (-x) is in
+    // the top-left, the red one (+x) in the top-right.
+    rgtest::Png png = rgtest::readPng(dir + "/04.png");
+    const uint8_t* left = png.at(w / 40, h / 8);
+    const uint8_t* right = png.at(w - 1 - w / 40, h / 8);
+    EXPECT_GT(left[2], left[0] + 60) << "blue landmark on the left";
+    EXPECT_GT(right[0], right[2] + 60) << "red landmark on the right";
+    // The floor's normal is +y: (0.5, 1, 0.5) in the bottom rows.
+    const uint8_t* floor = png.at(w / 2, h - 2);
+    EXPECT_NEAR(floor[0], rgtest::display8(0.5), 2);
+    EXPECT_NEAR(floor[1], rgtest::display8(1.0), 2);
+}
+
+TEST(Chapter04Windowed, TracesAndPresentsUnderXvfb) {
+    if (!std::getenv("DISPLAY")) {
+        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
+        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
+    }
+    std::string dir = rgtest::outputDir("04_window");
+    rgtest::RunResult r = rgtest::run(RG_EXE_04, {"--validation", "--width", "160", "--height", "90", "--frames", "20",
+                                                  "--output", dir + "/04.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(rgtest::readJson(dir + "/04.json").value("validation_messages", -1), 0);
+}
+
+}  // namespace

@@ -1,0 +1,62 @@
+// Bad scene files: one clear message naming the file and the key, exit code 2,
+// for every chapter that reads scenes.
+#include "harness.h"
+
+#include <fstream>
+
+namespace {
+
+struct BadScene {
+    std::string name, json, key;
+};
+
+const char* kGood = R"({"camera": {"position": [0, 1, 5]}, "materials": {"m": {}},
+  "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})";
+
+std::vector<BadScene> badScenes() {
+    return {
+        {"malformed", R"({"camera": {)", "not valid JSON"},
+        {"unknown_top_key", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}], "lihgts": []})", "lihgts"},
+        {"unknown_material_key", R"({"camera": {}, "materials": {"m": {"shine": 3}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "materials.m.shine"},
+        {"negative_radius", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": -1, "material": "m"}]})", "objects[0].radius"},
+        {"ior_below_1", R"({"camera": {}, "materials": {"m": {"ior": 0.9}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "materials.m.ior"},
+        {"nan_as_string", R"({"camera": {"fov_y_deg": "NaN"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "camera.fov_y_deg"},
+        {"huge_number", R"({"camera": {"position": [0, 0, 1e999]}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", ""},
+        {"missing_material", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "glass"}]})", "objects[0].material"},
+        {"unknown_shape", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "cube", "material": "m"}]})", "objects[0].type"},
+        {"parallel_quad", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "quad", "u": [1,0,0], "v": [2,0,0], "material": "m"}]})", "objects[0].v"},
+        {"no_objects", R"({"camera": {}, "materials": {"m": {}}, "objects": []})", "objects"},
+        {"missing_sky_image", R"({"camera": {}, "sky": {"image": "nope.png"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "sky.image"},
+    };
+}
+
+class Scenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Scenes, BadFilesExitWithCode2NamingFileAndKey) {
+    std::string dir = rgtest::outputDir("scenes_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
+    for (const auto& bad : badScenes()) {
+        std::string path = dir + "/" + bad.name + ".json";
+        std::ofstream(path) << bad.json;
+        rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--scene", path, "--output", dir + "/x.png"});
+        EXPECT_EQ(r.exitCode, 2) << bad.name << ": " << r.output;
+        EXPECT_NE(r.output.find(path), std::string::npos) << bad.name << ": " << r.output;
+        EXPECT_NE(r.output.find(bad.key), std::string::npos) << bad.name << ": " << r.output;
+        EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
+    }
+    rgtest::RunResult missing = rgtest::run(GetParam(), {"--headless", "--scene", dir + "/none.json"});
+    EXPECT_EQ(missing.exitCode, 2);
+    EXPECT_NE(missing.output.find("cannot open"), std::string::npos) << missing.output;
+}
+
+TEST_P(Scenes, AMinimalSceneRuns) {
+    std::string dir = rgtest::outputDir("scenes_ok_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
+    std::ofstream(dir + "/good.json") << kGood;
+    rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--validation", "--scene", dir + "/good.json",
+                                                   "--width", "32", "--height", "32", "--frames", "1", "--output",
+                                                   dir + "/good.png"});
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+}  // namespace
+
+INSTANTIATE_TEST_SUITE_P(SceneChapters, Scenes, ::testing::ValuesIn(std::vector<std::string>{RG_SCENE_CHAPTER_EXES}));
