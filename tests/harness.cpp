@@ -5,6 +5,7 @@
 #include <stb_image.h>
 
 #include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,21 @@ void expectCleanReport(const nlohmann::json& report, const std::string& chapter,
     EXPECT_LE(report["gpu_ms"].value("min", 0.0), report["gpu_ms"].value("median", 0.0));
     EXPECT_LE(report["gpu_ms"].value("median", 0.0), report["gpu_ms"].value("max", 0.0));
     EXPECT_GE(report.value("frames", 0), 1);
+}
+
+void expectCleanWindowedRun(const std::string& exe, const std::string& name, int frames) {
+    if (!std::getenv("DISPLAY")) {
+        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
+        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
+    }
+    std::string dir = outputDir(name);
+    RunResult r = run(exe, {"--validation", "--width", "160", "--height", "90", "--frames", std::to_string(frames),
+                            "--output", dir + "/" + name + ".png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = readJson(dir + "/" + name + ".json");
+    EXPECT_FALSE(report.value("headless", true));
+    EXPECT_EQ(report.value("frames", 0), frames);
+    EXPECT_EQ(report.value("validation_messages", -1), 0);
 }
 
 }  // namespace rgtest

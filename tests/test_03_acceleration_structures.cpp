@@ -65,15 +65,7 @@ TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
 }
 
 TEST(Chapter03Windowed, RefitsAndPresentsUnderXvfb) {
-    if (!std::getenv("DISPLAY")) {
-        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
-        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
-    }
-    std::string dir = rgtest::outputDir("03_window");
-    rgtest::RunResult r = rgtest::run(RG_EXE_03, {"--validation", "--width", "160", "--height", "90", "--frames", "20",
-                                                  "--output", dir + "/03.png"});
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(rgtest::readJson(dir + "/03.json").value("validation_messages", -1), 0);
+    rgtest::expectCleanWindowedRun(RG_EXE_03, "03_window", 20);
 }
 
 }  // namespace

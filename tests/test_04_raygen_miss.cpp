@@ -42,15 +42,7 @@ TEST(Chapter04, MatchesTheReference) {
 }
 
 TEST(Chapter04Windowed, TracesAndPresentsUnderXvfb) {
-    if (!std::getenv("DISPLAY")) {
-        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
-        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
-    }
-    std::string dir = rgtest::outputDir("04_window");
-    rgtest::RunResult r = rgtest::run(RG_EXE_04, {"--validation", "--width", "160", "--height", "90", "--frames", "20",
-                                                  "--output", dir + "/04.png"});
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(rgtest::readJson(dir + "/04.json").value("validation_messages", -1), 0);
+    rgtest::expectCleanWindowedRun(RG_EXE_04, "04_window", 20);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // through it; this file sets it up and animates chapter 01's pattern.
 #include "app.h"
 #include "cli.h"
+#include "descriptors.h"
 #include "frame_loop.h"
 #include "host_device.h"
 #include "output.h"
@@ -19,81 +20,21 @@ namespace {
 constexpr uint32_t kChecker = 32;
 
 struct ComputePass {
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    rg::DescriptorSet descriptors;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
 };
 
-// Chapter 01's descriptors and compute pipeline, in one function.
+// Chapter 01's descriptors and compute pipeline, through the shared helpers
+// (shared/descriptors.cpp holds chapter 01's code for any number of bindings).
 ComputePass createPatternPass(const rg::Gpu& gpu, const rg::Image& target, rg::DeletionQueue& deletion) {
     ComputePass p;
-    VkDescriptorSetLayoutBinding binding{
-        .binding = PATTERN_BINDING_TARGET,
-        .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-        .descriptorCount = 1,
-        .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
-    };
-    VkDescriptorSetLayoutCreateInfo setInfo{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = 1,
-        .pBindings = &binding,
-    };
-    VK_CHECK(vkCreateDescriptorSetLayout(gpu.device, &setInfo, nullptr, &p.setLayout));
-    VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1};
-    VkDescriptorPoolCreateInfo poolInfo{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 1,
-        .poolSizeCount = 1,
-        .pPoolSizes = &size,
-    };
-    VK_CHECK(vkCreateDescriptorPool(gpu.device, &poolInfo, nullptr, &p.pool));
-    VkDescriptorSetAllocateInfo allocate{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-        .descriptorPool = p.pool,
-        .descriptorSetCount = 1,
-        .pSetLayouts = &p.setLayout,
-    };
-    VK_CHECK(vkAllocateDescriptorSets(gpu.device, &allocate, &p.set));
-    VkDescriptorImageInfo image{.imageView = target.view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
-    VkWriteDescriptorSet write{
-        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-        .dstSet = p.set,
-        .dstBinding = PATTERN_BINDING_TARGET,
-        .descriptorCount = 1,
-        .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-        .pImageInfo = &image,
-    };
-    vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
-
-    VkPushConstantRange push{.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(rg::gpu::PatternPush)};
-    VkPipelineLayoutCreateInfo layoutInfo{
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
-        .setLayoutCount = 1,
-        .pSetLayouts = &p.setLayout,
-        .pushConstantRangeCount = 1,
-        .pPushConstantRanges = &push,
-    };
-    VK_CHECK(vkCreatePipelineLayout(gpu.device, &layoutInfo, nullptr, &p.layout));
-    VkComputePipelineCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-        .stage = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-            .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-            .module = rg::loadShader(gpu, deletion, "02_synchronization/pattern.comp"),
-            .pName = "main",
-        },
-        .layout = p.layout,
-    };
-    VK_CHECK(vkCreateComputePipelines(gpu.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
-    VkDevice device = gpu.device;
-    deletion.push([device, p] {
-        vkDestroyPipeline(device, p.pipeline, nullptr);
-        vkDestroyPipelineLayout(device, p.layout, nullptr);
-        vkDestroyDescriptorPool(device, p.pool, nullptr);
-        vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
-    });
+    p.descriptors = rg::createDescriptorSet(
+        gpu, deletion, {{PATTERN_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}});
+    rg::writeStorageImage(gpu, p.descriptors.set, PATTERN_BINDING_TARGET, target.view);
+    p.layout = rg::createPipelineLayout(gpu, deletion, p.descriptors.layout, sizeof(rg::gpu::PatternPush),
+                                        VK_SHADER_STAGE_COMPUTE_BIT);
+    p.pipeline = rg::createComputePipeline(gpu, deletion, p.layout, "02_synchronization/pattern.comp");
     return p;
 }
 
@@ -103,7 +44,7 @@ ComputePass createPatternPass(const rg::Gpu& gpu, const rg::Image& target, rg::D
 void recordFrame(VkCommandBuffer cmd, uint32_t frame, const ComputePass& p, const rg::Image& target) {
     rg::gpu::PatternPush push{target.extent.width, target.extent.height, float(frame / PATTERN_FPS), kChecker};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.descriptors.set, 0, nullptr);
     vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (push.width + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE,
                   (push.height + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE, 1);
