@@ -132,8 +132,8 @@ struct RtPush {
     uint pattern;        // sample pattern (chapter 11)
     uint fresnelMode;    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter 09)
     uint accumulated;    // frames already averaged into the target (chapter 11)
+    float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
     uint pad0;
-    uint pad1;
 };
 RG_SIZE(RtPush, 32);
 

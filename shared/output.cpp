@@ -8,10 +8,20 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 namespace rg {
+
+namespace {
+// Outputs may name folders that do not exist yet (--output out/NN.png).
+void makeParent(const std::string& path) {
+    std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ignored;  // a failure shows as "cannot write" below
+    if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+}
+}  // namespace
 
 FloatImage readImage(const Gpu& gpu, const Image& image, VkPipelineStageFlags lastWriter) {
     FloatImage out{image.extent.width, image.extent.height, {}};
@@ -50,6 +60,7 @@ FloatImage readImage(const Gpu& gpu, const Image& image, VkPipelineStageFlags la
 }
 
 void writePng(const std::string& path, const FloatImage& image) {
+    makeParent(path);
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * 3);
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = toDisplay8(image.rgba[4 * i + c]);
@@ -58,6 +69,7 @@ void writePng(const std::string& path, const FloatImage& image) {
 }
 
 void writePfm(const std::string& path, const FloatImage& image) {
+    makeParent(path);
     std::ofstream file(path, std::ios::binary);
     if (!file) throw std::runtime_error("cannot write " + path);
     file << "PF\n" << image.width << " " << image.height << "\n-1.0\n";  // negative: little endian
@@ -115,6 +127,7 @@ nlohmann::json makeReport(const Options& opts, const Gpu& gpu, const FrameTimes&
 }
 
 void writeReport(const std::string& path, const nlohmann::json& report) {
+    makeParent(path);
     std::ofstream file(path);
     if (!file) throw std::runtime_error("cannot write " + path);
     file << report.dump(2) << "\n";

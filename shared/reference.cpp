@@ -4,6 +4,8 @@
 #include "rt_scene.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <thread>
 
@@ -113,22 +115,57 @@ void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32
     direction = glm::normalize(forward + sx * right + sy * up);
 }
 
-glm::dvec3 ReferenceRenderer::shade(ReferenceStage stage, uint32_t x, uint32_t y, uint32_t width,
+glm::dvec3 ReferenceRenderer::secondaryOrigin(const glm::dvec3& p, const glm::dvec3& n) const {
+    double nearOrigin = scene_.scale / 32, floatScale = scene_.scale / 65536;
+    glm::dvec3 out;
+    for (int i = 0; i < 3; ++i) {
+        float pf = float(p[i]);
+        if (std::abs(pf) < nearOrigin) {
+            out[i] = p[i] + floatScale * n[i];
+        } else {  // move pf by int(256 n_i) units in the last place, away from zero when n_i > 0
+            int32_t bits = std::bit_cast<int32_t>(pf), units = int32_t(256.0f * float(n[i]));
+            float moved = std::bit_cast<float>(bits + (pf < 0 ? -units : units));
+            out[i] = double(moved) + (p[i] - double(pf));  // the same move, from the exact p
+        }
+    }
+    return out;
+}
+
+bool ReferenceRenderer::lightVisible(const glm::dvec3& from, const glm::dvec3& light) const {
+    glm::dvec3 toLight = light - from;
+    double d = glm::length(toLight);
+    return trace(from, toLight / d, 0.0, d * (1 - 1e-4)).t < 0;
+}
+
+glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
                                     uint32_t height) const {
     glm::dvec3 origin, direction;
     cameraRay(x, y, width, height, origin, direction);
     ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
     if (hit.t < 0) return sky(direction);
-    switch (stage) {
-        case ReferenceStage::Normals: {
-            glm::dvec3 n = glm::dot(hit.normal, direction) < 0 ? hit.normal : -hit.normal;
-            return 0.5 * n + 0.5;
+    glm::dvec3 n = glm::dot(hit.normal, direction) < 0 ? hit.normal : -hit.normal;  // toward the viewer
+    if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
+
+    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+    glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
+    if (settings.stage == ReferenceStage::Ambient) return color;
+    glm::dvec3 p = origin + hit.t * direction;
+    glm::dvec3 v = -direction;
+    glm::dvec3 from = secondaryOrigin(p, n);
+    for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
+        glm::dvec3 l = glm::normalize(light.position - p);
+        double ndotl = glm::dot(n, l);
+        if (ndotl <= 0 || !lightVisible(from, light.position)) continue;
+        color += light.intensity * m.kd * ndotl;
+        if (settings.stage == ReferenceStage::Specular) {
+            glm::dvec3 h = glm::normalize(l + v);
+            color += light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(n, h)), m.shininess);
         }
     }
-    return {0, 0, 0};
+    return color;
 }
 
-FloatImage ReferenceRenderer::render(ReferenceStage stage, uint32_t width, uint32_t height) const {
+FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const {
     FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> workers;
@@ -136,7 +173,7 @@ FloatImage ReferenceRenderer::render(ReferenceStage stage, uint32_t width, uint3
         workers.emplace_back([&, t] {
             for (uint32_t y = t; y < height; y += threads)
                 for (uint32_t x = 0; x < width; ++x) {
-                    glm::dvec3 c = shade(stage, x, y, width, height);
+                    glm::dvec3 c = shade(settings, x, y, width, height);
                     float* p = &image.rgba[4 * (size_t(y) * width + x)];
                     p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
                 }

@@ -11,7 +11,13 @@
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
-enum class ReferenceStage { Normals = 4 };
+enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7 };
+
+struct ReferenceSettings {
+    ReferenceStage stage = ReferenceStage::Normals;
+    int maxDepth = 1;
+    int fresnelMode = 0;
+};
 
 struct ReferenceHit {
     double t = -1;          // < 0: miss
@@ -28,9 +34,15 @@ public:
     glm::dvec3 sky(const glm::dvec3& direction) const;
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
                    glm::dvec3& direction) const;
-    glm::dvec3 shade(ReferenceStage stage, uint32_t x, uint32_t y, uint32_t width, uint32_t height) const;
+    glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height) const;
     // Renders every pixel on all cores.
-    FloatImage render(ReferenceStage stage, uint32_t width, uint32_t height) const;
+    FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
+    // Where a secondary ray leaving p (normal n) starts: the same rule as the
+    // GPU's offsetRay (Wächter-Binder on the float value of p), evaluated here
+    // so that both decide visibility from the same point.
+    glm::dvec3 secondaryOrigin(const glm::dvec3& p, const glm::dvec3& n) const;
+    // True when nothing lies between `from` and the light (in double precision).
+    bool lightVisible(const glm::dvec3& from, const glm::dvec3& light) const;
 
 private:
     const Scene& scene_;

@@ -8,7 +8,7 @@
 namespace rg {
 
 nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
-                           const Image& target, const FrameTimes& times, ReferenceStage stage) {
+                           const Image& target, const FrameTimes& times, const ReferenceSettings& referenceSettings) {
     FloatImage image = readImage(app.gpu, target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
     std::filesystem::path png(opts.output);
     writePng(opts.output, image);
@@ -29,7 +29,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
     if (opts.reference) {
         auto start = std::chrono::steady_clock::now();
         ReferenceRenderer reference(scene);
-        FloatImage expected = reference.render(stage, image.width, image.height);
+        FloatImage expected = reference.render(referenceSettings, image.width, image.height);
         double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         FloatImage heat;
         ImageError e = compareImages(image, expected, &heat);

@@ -10,6 +10,6 @@
 namespace rg {
 
 nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
-                           const Image& target, const FrameTimes& times, ReferenceStage stage);
+                           const Image& target, const FrameTimes& times, const ReferenceSettings& referenceSettings);
 
 }  // namespace rg

@@ -105,7 +105,6 @@ Scene loadScene(const std::string& path) {
 
     Scene s;
     s.path = path;
-    if (j.contains("scale")) s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);
 
     if (!j.contains("camera")) r.fail("camera", "missing");
     const json& c = j["camera"];
@@ -214,6 +213,19 @@ Scene loadScene(const std::string& path) {
         if (o.contains("transform")) obj.transform = readTransform(r, o["transform"], key + ".transform") * obj.transform;
         if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
         s.objects.push_back(obj);
+    }
+    // The scene's size: given, or the largest distance of an object's box
+    // from the origin. Secondary-ray offsets scale with it.
+    if (j.contains("scale")) {
+        s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);
+    } else {
+        s.scale = 0;
+        for (const auto& o : s.objects) {
+            const glm::dmat4& m = o.transform;
+            double extent = glm::length(glm::dvec3(m[3])) + glm::length(glm::dvec3(m[0])) +
+                            glm::length(glm::dvec3(m[1])) + glm::length(glm::dvec3(m[2]));
+            s.scale = std::max(s.scale, extent);
+        }
     }
     return s;
 }

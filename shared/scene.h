@@ -64,7 +64,7 @@ struct Scene {
     std::vector<PointLight> lights;
     std::vector<Material> materials;
     std::vector<Object> objects;
-    double scale = 1.0;  // the scene's size, for hard cases at 1e-3 and 1e5 (see scene-format.md)
+    double scale = 1.0;  // the scene's size (given, or from the objects): secondary-ray offsets scale with it
 };
 
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming

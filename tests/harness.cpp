@@ -4,6 +4,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstdio>
@@ -85,6 +86,38 @@ void expectCleanReport(const nlohmann::json& report, const std::string& chapter,
     EXPECT_LE(report["gpu_ms"].value("min", 0.0), report["gpu_ms"].value("median", 0.0));
     EXPECT_LE(report["gpu_ms"].value("median", 0.0), report["gpu_ms"].value("max", 0.0));
     EXPECT_GE(report.value("frames", 0), 1);
+}
+
+nlohmann::json expectMatchesReference(const std::string& exe, const std::string& scene, const std::string& name,
+                                      const std::vector<std::string>& extraArgs) {
+    std::string dir = outputDir(name);
+    std::vector<std::string> args = {"--headless", "--validation", "--reference", "--width", "160", "--height", "90",
+                                     "--frames", "2", "--output", dir + "/out.png"};
+    if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
+    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    RunResult r = run(exe, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = readJson(dir + "/out.json");
+    if (!report.is_object() || !report.contains("error")) {
+        ADD_FAILURE() << name << ": no error in the report";
+        return report;
+    }
+    expectCleanReport(report, report.value("chapter", ""), 160, 90);
+    const auto& e = report["error"];
+    EXPECT_LE(e.value("frac_over_1_255", 1.0), 0.001) << name;
+    EXPECT_LE(e.value("rmse", 1.0), 1e-3) << name;
+    EXPECT_EQ(e.value("non_finite_pixels", 1), 0) << name;
+    EXPECT_EQ(report.value("non_finite_values", 1), 0) << name;
+    EXPECT_GE(report.value("rays_per_frame", 0), 160 * 90) << name;
+    return report;
+}
+
+std::vector<std::string> hardCaseScenes() {
+    std::vector<std::string> scenes;
+    for (const auto& entry : std::filesystem::directory_iterator(RG_SOURCE_DIR "/tests/scenes"))
+        if (entry.path().extension() == ".json") scenes.push_back(entry.path().string());
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
 }
 
 void expectCleanWindowedRun(const std::string& exe, const std::string& name, int frames) {

@@ -39,4 +39,14 @@ void expectCleanReport(const nlohmann::json& report, const std::string& chapter,
 // validation message. Skips without a display, fails under RG_REQUIRE_DISPLAY.
 void expectCleanWindowedRun(const std::string& exe, const std::string& name, int frames);
 
+// Runs a ray tracing chapter headless with --reference on `scene` (empty:
+// its default) and checks the error bounds every shading chapter must meet:
+// at most 0.1 % of pixels off by more than 1/255, RMSE <= 1e-3, no NaN/Inf.
+// Returns the report for further checks.
+nlohmann::json expectMatchesReference(const std::string& exe, const std::string& scene, const std::string& name,
+                                      const std::vector<std::string>& extraArgs = {});
+
+// The hard-case scenes under tests/scenes/.
+std::vector<std::string> hardCaseScenes();
+
 }  // namespace rgtest

@@ -47,6 +47,6 @@ int main(int argc, char** argv) {
             rg::gpu::RtPush push{.frame = frame};
             rg::recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
         });
-        rg::finishRtRun(app, opts, scene, rt, target, times, rg::ReferenceStage::Normals);
+        rg::finishRtRun(app, opts, scene, rt, target, times, {.stage = rg::ReferenceStage::Normals});
     });
 }

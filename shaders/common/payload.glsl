@@ -7,9 +7,8 @@ struct HitPayload {
     float t;         // hit distance along the (unit) ray direction; < 0 on a miss
     vec3 normal;     // world-space unit geometric normal, pointing out of the shape
     uint material;
+    vec3 position;   // world-space hit point, re-projected onto the surface
     uint object;
     uint frontFace;  // 1: the ray hit the outside (front) of the surface
-    uint pad0;
-    uint pad1;
 };
 #endif

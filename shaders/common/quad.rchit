@@ -10,6 +10,9 @@ layout(location = 0) rayPayloadInEXT HitPayload payload;
 void main() {
     payload.normal = normalize(vec3(0.0, 1.0, 0.0) * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
+    vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
+    local.y = 0.0;  // exactly on the unit quad's plane
+    payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
     payload.object = gl_InstanceCustomIndexEXT;
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;

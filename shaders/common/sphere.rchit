@@ -12,6 +12,9 @@ void main() {
     // Normals transform with the inverse transpose: n * M^-1 = (M^-T) n.
     payload.normal = normalize(objectNormal * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
+    // The hit point on the unit sphere (normalizing projects it onto the
+    // surface), then to world space: more exact than origin + t * direction.
+    payload.position = gl_ObjectToWorldEXT * vec4(normalize(objectNormal), 1.0);
     payload.object = gl_InstanceCustomIndexEXT;
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;

@@ -1,0 +1,18 @@
+// Chapter 06 - Diffuse light and shadows (thesis 3.2). The ray generation
+// shader adds k_d * I_i * max(0, l.n) for each light a shadow ray reaches;
+// shadow rays have their own miss shader and hit groups.
+#include "rt_chapter.h"
+
+int main(int argc, char** argv) {
+    return rg::runRtChapter(argc, argv, {
+        .name = "06_diffuse",
+        .description = "RayGlass chapter 06: diffuse light with a shadow ray to every light",
+        .title = "RayGlass 06: diffuse",
+        .stage = rg::ReferenceStage::Diffuse,
+        .options = [](CLI::App& app, rg::RtChapterSettings& s) {
+            app.add_option("--fixed-epsilon", s.epsilon,
+                           "Experiment: start shadow rays at p + E*n instead of the robust offset")
+                ->check(CLI::Range(1e-30, 1e30));
+        },
+    });
+}

@@ -1,0 +1,26 @@
+// What every ray generation shader from chapter 05 on shares: its outputs,
+// its payload, the primary trace (as chapter 04 writes it out), and the
+// normal on the side the ray came from.
+#ifndef RAYGEN_COMMON_GLSL
+#define RAYGEN_COMMON_GLSL
+layout(binding = RT_BINDING_TARGET, rgba32f) uniform image2D target;
+layout(binding = RT_BINDING_RAY_COUNT, std430) writeonly buffer RayCount { uint rayCount[]; };
+layout(location = 0) rayPayloadEXT HitPayload payload;
+
+// The closest hit along the ray into `payload` (a miss leaves the sky's radiance).
+void traceClosest(vec3 origin, float tMin, vec3 direction) {
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin, tMin, direction,
+                kInfinity, 0);
+}
+
+// The geometric normal turned toward the ray's origin: opaque surfaces are
+// lit on the side they are seen from.
+vec3 facingNormal(vec3 normal, vec3 direction) {
+    return dot(normal, direction) < 0.0 ? normal : -normal;
+}
+
+void writePixel(vec3 color, uint rays) {
+    imageStore(target, ivec2(gl_LaunchIDEXT.xy), vec4(color, 1.0));
+    rayCount[gl_LaunchIDEXT.y * gl_LaunchSizeEXT.x + gl_LaunchIDEXT.x] = rays;
+}
+#endif

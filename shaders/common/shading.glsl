@@ -1,0 +1,77 @@
+// Blinn-Phong shading (thesis 3), defined once for every chapter's raygen:
+// ambient (3.1), diffuse with a shadow ray to each light (3.2), specular
+// with the half vector (3.3). Radiance is linear; the display transform
+// happens once, at the end (shared/display.h).
+#ifndef SHADING_GLSL
+#define SHADING_GLSL
+#include "offset.glsl"
+
+layout(location = 1) rayPayloadEXT uint shadowPayload;
+
+// [region ambient]
+vec3 ambientTerm(GpuMaterial m) {
+    return m.ka.rgb * camera.ambient.rgb;  // I_g = k_a I_a
+}
+// [end]
+
+// [region visible]
+// True when nothing lies between `origin` (already offset from the surface)
+// and the light. The ray is aimed from where it starts: aimed from the
+// surface point instead, it would end beside the light, by the offset.
+// It needs no closest hit, only "anything at all": it stops at the first
+// hit and runs no closest-hit shader; only the shadow miss shader says "lit".
+bool lightVisible(vec3 origin, vec3 light) {
+    vec3 toLight = light - origin;
+    float distanceToLight = length(toLight);
+    toLight /= distanceToLight;
+    shadowPayload = 1u;  // assume blocked until the miss shader says otherwise
+    traceRayEXT(tlas,
+                gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                0xFF,                          // every instance can cast a shadow
+                RAY_TYPE_SHADOW,               // SBT offset: the shadow hit groups
+                0,                             // SBT stride: one geometry per BLAS
+                MISS_SHADOW,                   // the shadow miss shader
+                origin, 0.0,                   // origin already offset from the surface
+                toLight, distanceToLight * (1.0 - 1e-4),  // stop just short of the light
+                1);                            // payload location 1: shadowPayload
+    return shadowPayload == 0u;
+}
+// [end]
+
+// [region diffuse]
+// k_d * sum over lights of I_i * max(0, l . n), for the lights this point sees.
+// n faces the side the ray came from; `rays` counts the shadow rays traced.
+vec3 diffuseTerm(GpuMaterial m, vec3 p, vec3 n, inout uint rays) {
+    vec3 sum = vec3(0.0);
+    vec3 origin = secondaryOrigin(p, n);
+    for (uint i = 0u; i < camera.counts.z; ++i) {
+        vec3 l = normalize(lights[i].position.xyz - p);
+        float ndotl = dot(n, l);
+        if (ndotl <= 0.0) continue;  // the light is behind the surface: no ray needed
+        ++rays;
+        if (lightVisible(origin, lights[i].position.xyz)) sum += lights[i].intensity.rgb * ndotl;
+    }
+    return m.kd.rgb * sum;
+}
+// [end]
+
+// [region diffuse_specular]
+// Diffuse and Blinn-Phong specular together, one shadow ray per light:
+// k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays) {
+    vec3 sum = vec3(0.0);
+    vec3 origin = secondaryOrigin(p, n);
+    for (uint i = 0u; i < camera.counts.z; ++i) {
+        vec3 l = normalize(lights[i].position.xyz - p);
+        float ndotl = dot(n, l);
+        if (ndotl <= 0.0) continue;
+        ++rays;
+        if (!lightVisible(origin, lights[i].position.xyz)) continue;
+        vec3 h = normalize(l + v);
+        float specular = pow(max(0.0, dot(n, h)), m.params.x);
+        sum += lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
+    }
+    return sum;
+}
+// [end]
+#endif

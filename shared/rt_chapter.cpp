@@ -1,0 +1,63 @@
+#include "rt_chapter.h"
+
+#include "app.h"
+#include "frame_loop.h"
+#include "host_device.h"
+#include "rt_pipeline.h"
+#include "rt_report.h"
+#include "rt_scene.h"
+#include "scene.h"
+
+namespace rg {
+
+int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
+    Options opts;
+    RtChapterSettings settings;
+    auto extra = [&](CLI::App& app, Options& o) {
+        addSceneOptions(app, o, true);
+        if (chapter.options) chapter.options(app, settings);
+    };
+    if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
+    return runChapter(opts, [&] {
+        Scene scene = loadScene(opts.scene.empty() ? defaultScenePath("default") : opts.scene);
+        App app;
+        initApp(app, opts, chapter.title);
+        Image target = createImage2D(app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        RtScene rt = uploadScene(app.gpu, app.deletion, scene, target);
+
+        // [region shaders]
+        // SBT: raygen | miss: sky, shadow | hit: quad, sphere (primary rays),
+        // quad, sphere (shadow rays: no closest hit; the sphere still needs
+        // its intersection shader to be found at all).
+        RtShaders shaders{
+            .raygen = chapter.name + "/raygen.rgen",
+            .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
+            .hitGroups = {{.closestHit = "common/quad.rchit"},
+                          {.closestHit = "common/sphere.rchit", .intersection = "common/sphere.rint"},
+                          {},
+                          {.intersection = "common/sphere.rint"}},
+        };
+        // [end]
+        RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
+                                               shaders);
+        FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
+        FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
+            gpu::RtPush push{
+                .frame = frame,
+                .maxDepth = uint32_t(settings.maxDepth),
+                .samplesPerHit = uint32_t(settings.samplesPerHit),
+                .pattern = uint32_t(settings.pattern),
+                .fresnelMode = uint32_t(settings.fresnelMode),
+                .accumulated = 0,
+                .epsilon = settings.epsilon,
+            };
+            recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
+        });
+        ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
+                                    .fresnelMode = settings.fresnelMode};
+        finishRtRun(app, opts, scene, rt, target, times, reference);
+    });
+}
+
+}  // namespace rg

@@ -1,0 +1,31 @@
+// Chapters 05-11 change only their shaders (and the reference's stage): this
+// is chapter 04's main() for them, with the shadow ray type added to the SBT.
+#pragma once
+#include "cli.h"
+#include "reference.h"
+
+#include <functional>
+#include <string>
+
+namespace rg {
+
+struct RtChapterSettings {
+    int maxDepth = 1;
+    int samplesPerHit = 1;
+    int pattern = 0;
+    int fresnelMode = 0;
+    float epsilon = 0;  // > 0: a fixed offset for secondary rays (chapter 06's experiment)
+};
+
+struct RtChapter {
+    std::string name;         // "05_ambient": the executable, its shader folder
+    std::string description;  // for --help
+    std::string title;        // the window's title
+    ReferenceStage stage;     // what the CPU reference renders
+    // Adds the chapter's own options (chapter 06: --fixed-epsilon, ...).
+    std::function<void(CLI::App&, RtChapterSettings&)> options;
+};
+
+int runRtChapter(int argc, char** argv, const RtChapter& chapter);
+
+}  // namespace rg
