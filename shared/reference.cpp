@@ -137,32 +137,88 @@ bool ReferenceRenderer::lightVisible(const glm::dvec3& from, const glm::dvec3& l
     return trace(from, toLight / d, 0.0, d * (1 - 1e-4)).t < 0;
 }
 
-glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
-                                    uint32_t height) const {
-    glm::dvec3 origin, direction;
-    cameraRay(x, y, width, height, origin, direction);
-    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
-    if (hit.t < 0) return sky(direction);
-    glm::dvec3 n = glm::dot(hit.normal, direction) < 0 ? hit.normal : -hit.normal;  // toward the viewer
-    if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
+double referenceFresnel(int mode, double f0, double cosI, double n1, double n2) {
+    double sin2T = (n1 / n2) * (n1 / n2) * std::max(0.0, 1 - cosI * cosI);  // Snell
+    if (sin2T >= 1) return 1;                                                // total internal reflection
+    double cosT = std::sqrt(1 - sin2T);
+    if (mode == 2) {  // unpolarized: the mean of the s and p reflectances
+        double rs = (n1 * cosI - n2 * cosT) / (n1 * cosI + n2 * cosT);
+        double rp = (n2 * cosI - n1 * cosT) / (n2 * cosI + n1 * cosT);
+        return (rs * rs + rp * rp) / 2;
+    }
+    if (mode == 1) f0 = std::pow((n1 - n2) / (n1 + n2), 2);
+    double c = n1 > n2 ? cosT : cosI;  // Schlick leaving a denser medium uses the transmitted angle
+    return f0 + (1 - f0) * std::pow(1 - c, 5);
+}
 
-    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
+                                           const glm::dvec3& n, const glm::dvec3& v) const {
     glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
     if (settings.stage == ReferenceStage::Ambient) return color;
-    glm::dvec3 p = origin + hit.t * direction;
-    glm::dvec3 v = -direction;
     glm::dvec3 from = secondaryOrigin(p, n);
     for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
         glm::dvec3 l = glm::normalize(light.position - p);
         double ndotl = glm::dot(n, l);
         if (ndotl <= 0 || !lightVisible(from, light.position)) continue;
         color += light.intensity * m.kd * ndotl;
-        if (settings.stage == ReferenceStage::Specular) {
+        if (settings.stage != ReferenceStage::Diffuse) {
             glm::dvec3 h = glm::normalize(l + v);
             color += light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(n, h)), m.shininess);
         }
     }
     return color;
+}
+
+glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
+                                       const glm::dvec3& direction, int depth, const glm::dvec3& throughput) const {
+    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
+    if (hit.t < 0) return sky(direction);
+    bool front = glm::dot(hit.normal, direction) < 0;
+    glm::dvec3 n = front ? hit.normal : -hit.normal;  // toward the ray's origin
+    if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
+    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+    glm::dvec3 p = origin + hit.t * direction;
+    glm::dvec3 v = -direction;
+    if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, n, v);
+
+    // How the light divides at this surface (chapters 08-10).
+    double reflected = m.reflectivity, refracted = 0;
+    bool entering = hit.object < scene_.objects.size() && (scene_.objects[hit.object].type == ShapeType::Sphere
+                                                               ? hit.frontFace : front);
+    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
+    if (settings.stage >= ReferenceStage::Fresnel) {
+        double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(n, v), n1, n2);
+        reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
+        if (settings.stage == ReferenceStage::Refraction) refracted = m.transmission * (1 - F);
+    }
+    double local = 1 - reflected - refracted;
+    glm::dvec3 color(0);
+    if (local > 0) color += local * localShading(settings, m, p, n, v);
+    if (depth >= settings.maxDepth) return color;
+    constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
+    auto strongEnough = [&](double w) {
+        glm::dvec3 t = throughput * w;
+        return settings.stage != ReferenceStage::Refraction || std::max({t.r, t.g, t.b}) >= kMinThroughput;
+    };
+    if (reflected > 0 && strongEnough(reflected)) {
+        glm::dvec3 r = direction - 2 * glm::dot(direction, n) * n;
+        color += reflected * radiance(settings, secondaryOrigin(p, n), r, depth + 1, throughput * reflected);
+    }
+    if (refracted > 0 && strongEnough(refracted)) {
+        // Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing the ray.
+        double eta = n1 / n2, cosI = glm::dot(n, v);
+        double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+        glm::dvec3 t = glm::normalize(eta * direction + (eta * cosI - cosT) * n);
+        color += refracted * radiance(settings, secondaryOrigin(p, -n), t, depth + 1, throughput * refracted);
+    }
+    return color;
+}
+
+glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
+                                    uint32_t height) const {
+    glm::dvec3 origin, direction;
+    cameraRay(x, y, width, height, origin, direction);
+    return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
 }
 
 FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const {

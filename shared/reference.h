@@ -11,7 +11,7 @@
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
-enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7 };
+enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10 };
 
 struct ReferenceSettings {
     ReferenceStage stage = ReferenceStage::Normals;
@@ -35,6 +35,12 @@ public:
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
                    glm::dvec3& direction) const;
     glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height) const;
+    // Radiance arriving along a ray (chapters 05-10), following reflections
+    // and refractions up to the depth limit.
+    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
+                        int depth, const glm::dvec3& throughput) const;
+    glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
+                            const glm::dvec3& n, const glm::dvec3& v) const;
     // Renders every pixel on all cores.
     FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
     // Where a secondary ray leaving p (normal n) starts: the same rule as the
@@ -50,6 +56,10 @@ private:
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
     std::vector<double> sky_;  // linear RGB
 };
+
+// Fresnel reflectance, in double (mode as the GPU's: 0 Schlick with f0,
+// 1 Schlick with f0 from the IOR, 2 exact), going from index n1 into n2.
+double referenceFresnel(int mode, double f0, double cosI, double n1, double n2);
 
 // Roots t0 <= t1 of |o + t d| = 1, in double (the reference's own form).
 bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, double& t1);

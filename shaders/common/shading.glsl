@@ -74,4 +74,9 @@ vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays)
     return sum;
 }
 // [end]
+
+// Chapter 07's whole local model: ambient + diffuse + specular.
+vec3 localShading(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays) {
+    return ambientTerm(m) + diffuseSpecularTerm(m, p, n, v, rays);
+}
 #endif
