@@ -1,38 +1,6 @@
-// Chapter 06 against the CPU double-precision reference, on its default
-// scene and on every hard case under tests/scenes/ (scales 1e-3 and 1e5, a
-// light on a surface, a grazing light, tangent rays, overlapping spheres,
-// the camera inside a sphere), with validation on and no NaN anywhere.
+// Chapter 06's own experiment; the reference and hard-case tests of every
+// shading chapter are in test_reference.cpp.
 #include "harness.h"
-
-#include <cctype>
-#include <filesystem>
-
-namespace {
-
-TEST(Chapter06, DefaultSceneMatchesTheReference) {
-    rgtest::expectMatchesReference(RG_EXE_06, "", "06_default");
-}
-
-class Chapter06HardCases : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(Chapter06HardCases, MatchesTheReference) {
-    std::string stem = std::filesystem::path(GetParam()).stem().string();
-    rgtest::expectMatchesReference(RG_EXE_06, GetParam(), "06_" + stem);
-}
-
-INSTANTIATE_TEST_SUITE_P(Scenes, Chapter06HardCases, ::testing::ValuesIn(rgtest::hardCaseScenes()),
-                         [](const auto& info) {  // test names allow letters, digits and '_'
-                             std::string name = std::filesystem::path(info.param).stem().string();
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
-
-TEST(Chapter06Windowed, RendersUnderXvfb) {
-    rgtest::expectCleanWindowedRun(RG_EXE_06, "06_window", 10);
-}
-
-}  // namespace
 
 namespace {
 

@@ -1,0 +1,74 @@
+// Chapter 10's optics: seen through a glass ball, markers behind it appear
+// inverted both ways, at the distance from the centre that the paraxial
+// ball-lens formula predicts (effective focal length f = nR / (2(n - 1))
+// from the centre), within 3 %.
+#include "harness.h"
+
+#include <cmath>
+#include <fstream>
+
+namespace {
+
+struct Centroid {
+    double dx = 0, dy = 0;  // pixels from the image centre, y down
+    int pixels = 0;
+};
+
+Centroid find(const rgtest::Png& png, int channel) {
+    Centroid c;
+    double sx = 0, sy = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) {
+            const uint8_t* p = png.at(x, y);
+            bool pure = p[channel] > 180 && p[(channel + 1) % 3] < 60 && p[(channel + 2) % 3] < 60;
+            if (!pure) continue;
+            sx += x + 0.5, sy += y + 0.5;
+            ++c.pixels;
+        }
+    if (c.pixels) c.dx = sx / c.pixels - png.width / 2.0, c.dy = sy / c.pixels - png.height / 2.0;
+    return c;
+}
+
+TEST(Chapter10, BallLensInvertsAndMagnifiesAsPredicted) {
+    const std::string scenePath = RG_SOURCE_DIR "/tests/optics/ball_lens.json";
+    std::ifstream file(scenePath);
+    nlohmann::json scene = nlohmann::json::parse(file);
+    const int size = 1000;
+    std::string dir = rgtest::outputDir("10_ball_lens");
+    rgtest::RunResult r = rgtest::run(RG_EXE_10, {"--headless", "--validation", "--scene", scenePath, "--width",
+                                                  std::to_string(size), "--height", std::to_string(size), "--frames",
+                                                  "1", "--output", dir + "/lens.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+
+    // The paraxial prediction from the scene's own numbers.
+    double n = scene["materials"]["glass"]["ior"], R = scene["objects"][0]["radius"];
+    double D = scene["camera"]["position"][2], fov = scene["camera"]["fov_y_deg"];
+    double L = -scene["objects"][2]["center"][2].get<double>();  // the markers' distance behind the centre
+    double y = scene["objects"][2]["center"][1];                 // the red marker's height
+    double f = n * R / (2 * (n - 1));                            // the ball lens's focal length, from the centre
+    // A camera ray through height h at the centre plane leaves the lens at
+    // angle h/D - h/f and reaches the marker plane at h (1 + L/D - L/f) = y.
+    double alpha = y / (D * (1 + L / D - L / f));                // the camera ray's angle
+    double predicted = std::tan(alpha) / std::tan(fov / 2 * 3.14159265358979323846 / 180) * size / 2;
+    ASSERT_LT(predicted, 0) << "a real, inverted image";
+
+    rgtest::Png png = rgtest::readPng(dir + "/lens.png");
+    Centroid red = find(png, 0), green = find(png, 1), blue = find(png, 2);
+    ASSERT_GT(red.pixels, 20);
+    ASSERT_GT(green.pixels, 20);
+    ASSERT_GT(blue.pixels, 20);
+    // Above the axis in the world -> below the centre in the image (y down): up/down inverted.
+    EXPECT_GT(red.dy, 0);
+    EXPECT_LT(blue.dy, 0);
+    // Right of the axis in the world -> left in the image: left/right inverted.
+    EXPECT_LT(green.dx, 0);
+    // Distances from the centre: within 3 % of the paraxial prediction.
+    double tolerance = 0.03 * std::abs(predicted);
+    EXPECT_NEAR(red.dy, -predicted, tolerance);
+    EXPECT_NEAR(blue.dy, predicted, tolerance);
+    EXPECT_NEAR(green.dx, predicted, tolerance);
+    EXPECT_NEAR(red.dx, 0, 0.5);
+    EXPECT_NEAR(green.dy, 0, 0.5);
+}
+
+}  // namespace

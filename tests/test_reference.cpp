@@ -1,0 +1,38 @@
+// Compiled once per shading chapter (05-10; tests/CMakeLists.txt sets
+// RG_THIS_EXE and RG_THIS_NAME): the chapter against the CPU double-precision
+// reference on its default scene and on every hard case under tests/scenes/
+// (scales 1e-3 and 1e5, a light on a surface, a grazing light, tangent rays,
+// overlapping spheres, a camera inside a sphere or inside glass, total
+// internal reflection, touching glass spheres, the depth limit), with
+// validation on and no NaN anywhere; and its window under Xvfb.
+#include "harness.h"
+
+#include <cctype>
+#include <filesystem>
+
+namespace {
+
+TEST(Reference, DefaultSceneMatches) {
+    rgtest::expectMatchesReference(RG_THIS_EXE, "", RG_THIS_NAME "_default");
+}
+
+class HardCases : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HardCases, MatchReference) {
+    std::string stem = std::filesystem::path(GetParam()).stem().string();
+    rgtest::expectMatchesReference(RG_THIS_EXE, GetParam(), RG_THIS_NAME "_" + stem);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HardCases, ::testing::ValuesIn(rgtest::hardCaseScenes()),
+                         [](const auto& info) {  // test names allow letters, digits and '_'
+                             std::string name = std::filesystem::path(info.param).stem().string();
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+TEST(Windowed, RendersUnderXvfb) {
+    rgtest::expectCleanWindowedRun(RG_THIS_EXE, RG_THIS_NAME "_window", 10);
+}
+
+}  // namespace
