@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 #include <cmath>
+#include <random>
 #include <thread>
 
 namespace rg {
@@ -189,7 +190,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     if (settings.stage >= ReferenceStage::Fresnel) {
         double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(n, v), n1, n2);
         reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
-        if (settings.stage == ReferenceStage::Refraction) refracted = m.transmission * (1 - F);
+        if (settings.stage >= ReferenceStage::Refraction) refracted = m.transmission * (1 - F);
     }
     double local = 1 - reflected - refracted;
     glm::dvec3 color(0);
@@ -198,7 +199,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
         glm::dvec3 t = throughput * w;
-        return settings.stage != ReferenceStage::Refraction || std::max({t.r, t.g, t.b}) >= kMinThroughput;
+        return settings.stage < ReferenceStage::Refraction || std::max({t.r, t.g, t.b}) >= kMinThroughput;
     };
     if (reflected > 0 && strongEnough(reflected)) {
         glm::dvec3 r = direction - 2 * glm::dot(direction, n) * n;
@@ -215,10 +216,61 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
 }
 
 glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
-                                    uint32_t height) const {
+                                    uint32_t height, double* stdError) const {
     glm::dvec3 origin, direction;
     cameraRay(x, y, width, height, origin, direction);
-    return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+    if (stdError) *stdError = 0;
+    if (settings.stage != ReferenceStage::Rough) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+
+    // Chapter 11: the first surface's mirror branch becomes the mean over a
+    // cone of directions. Same split and cone as the GPU; the integral is
+    // estimated with many stratified samples from this code's own generator.
+    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
+    if (hit.t < 0) return sky(direction);
+    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+    bool front = glm::dot(hit.normal, direction) < 0;
+    glm::dvec3 n = front ? hit.normal : -hit.normal;
+    if (m.roughness <= 0 || settings.maxDepth == 0) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+    glm::dvec3 p = origin + hit.t * direction, v = -direction;
+    bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
+    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
+    double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(n, v), n1, n2);
+    double reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
+    double refracted = m.transmission * (1 - F), local = 1 - reflected - refracted;
+    glm::dvec3 color(0);
+    if (local > 0) color += local * localShading(settings, m, p, n, v);
+    if (refracted >= 1e-4) {
+        double eta = n1 / n2, cosI = glm::dot(n, v);
+        double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+        glm::dvec3 t = glm::normalize(eta * direction + (eta * cosI - cosT) * n);
+        color += refracted * radiance(settings, secondaryOrigin(p, -n), t, 1, glm::dvec3(refracted));
+    }
+    if (reflected < 1e-4) return color;
+    glm::dvec3 mirror = direction - 2 * glm::dot(direction, n) * n;
+    // A basis around the mirror direction, and the cone of half-angle roughness * pi/2.
+    glm::dvec3 helper = std::abs(mirror.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    glm::dvec3 t1 = glm::normalize(glm::cross(helper, mirror)), t2 = glm::cross(mirror, t1);
+    double cosMax = std::cos(m.roughness * kPi / 2);
+    int side = std::max(1, int(std::lround(std::sqrt(double(settings.samples)))));
+    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x));
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    glm::dvec3 from = secondaryOrigin(p, n), sum(0), sumSq(0);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            double u1 = (i + uniform(rng)) / side, u2 = (j + uniform(rng)) / side;
+            double cosTheta = 1 - u1 * (1 - cosMax), sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+            glm::dvec3 d = glm::normalize(sinTheta * std::cos(2 * kPi * u2) * t1 +
+                                          sinTheta * std::sin(2 * kPi * u2) * t2 + cosTheta * mirror);
+            glm::dvec3 value(0);  // below the surface: absorbed
+            if (glm::dot(d, n) > 0) value = radiance(settings, from, d, 1, glm::dvec3(reflected));
+            sum += value;
+            sumSq += value * value;
+        }
+    double count = double(side) * side;
+    glm::dvec3 mean = sum / count, variance = (sumSq / count - mean * mean) * (count / (count - 1));
+    if (stdError)  // of independent samples: stratification makes the true error smaller
+        *stdError = reflected * std::sqrt(std::max(0.0, (variance.r + variance.g + variance.b) / 3) / count);
+    return color + reflected * mean;
 }
 
 FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const {
@@ -229,9 +281,11 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
         workers.emplace_back([&, t] {
             for (uint32_t y = t; y < height; y += threads)
                 for (uint32_t x = 0; x < width; ++x) {
-                    glm::dvec3 c = shade(settings, x, y, width, height);
+                    double stdError = 0;
+                    glm::dvec3 c = shade(settings, x, y, width, height, &stdError);
                     float* p = &image.rgba[4 * (size_t(y) * width + x)];
                     p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
+                    if (settings.stage == ReferenceStage::Rough) p[3] = float(stdError);
                 }
         });
     for (auto& w : workers) w.join();

@@ -11,12 +11,13 @@
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
-enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10 };
+enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10, Rough = 11 };
 
 struct ReferenceSettings {
     ReferenceStage stage = ReferenceStage::Normals;
     int maxDepth = 1;
     int fresnelMode = 0;
+    int samples = 1024;  // chapter 11: stratified samples per rough hit (a square number)
 };
 
 struct ReferenceHit {
@@ -34,14 +35,18 @@ public:
     glm::dvec3 sky(const glm::dvec3& direction) const;
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
                    glm::dvec3& direction) const;
-    glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height) const;
+    // Chapter 11 also returns the standard error of its rough-reflection
+    // estimate in `stdError` (0 elsewhere).
+    glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                     double* stdError = nullptr) const;
     // Radiance arriving along a ray (chapters 05-10), following reflections
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
                         int depth, const glm::dvec3& throughput) const;
     glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
                             const glm::dvec3& n, const glm::dvec3& v) const;
-    // Renders every pixel on all cores.
+    // Renders every pixel on all cores. For chapter 11 each pixel's alpha
+    // holds the standard error of its estimate (the reference's own error).
     FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
     // Where a secondary ray leaving p (normal n) starts: the same rule as the
     // GPU's offsetRay (Wächter-Binder on the float value of p), evaluated here

@@ -8,6 +8,8 @@
 #include "rt_scene.h"
 #include "scene.h"
 
+#include <algorithm>
+
 namespace rg {
 
 int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
@@ -42,20 +44,37 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
                                                shaders);
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
+        uint32_t firstFrame = 0;  // of the current accumulation
+        const char* patterns[] = {"uniform", "stratified", "hammersley"};
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
+            if (app.window && settings.accumulate) {
+                // P: next sample pattern; up/down: twice or half the samples. Both restart the average.
+                for (int key : app.window->takeKeys()) {
+                    if (key == GLFW_KEY_P) settings.pattern = (settings.pattern + 1) % 3;
+                    else if (key == GLFW_KEY_UP) settings.samplesPerHit = std::min(1024, settings.samplesPerHit * 2);
+                    else if (key == GLFW_KEY_DOWN) settings.samplesPerHit = std::max(1, settings.samplesPerHit / 2);
+                    else continue;
+                    firstFrame = frame;
+                }
+                uint32_t frames = frame - firstFrame + 1;
+                app.window->setTitle(chapter.title + " - " + patterns[settings.pattern] + ", " +
+                                     std::to_string(settings.samplesPerHit) + " samples/hit x " +
+                                     std::to_string(frames) + " frames = " +
+                                     std::to_string(frames * settings.samplesPerHit) + " (P, up, down)");
+            }
             gpu::RtPush push{
                 .frame = frame,
                 .maxDepth = uint32_t(settings.maxDepth),
                 .samplesPerHit = uint32_t(settings.samplesPerHit),
                 .pattern = uint32_t(settings.pattern),
                 .fresnelMode = uint32_t(settings.fresnelMode),
-                .accumulated = 0,
+                .accumulated = settings.accumulate ? frame - firstFrame : 0,
                 .epsilon = settings.epsilon,
             };
             recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
-                                    .fresnelMode = settings.fresnelMode};
+                                    .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
         finishRtRun(app, opts, scene, rt, target, times, reference);
     });
 }

@@ -15,6 +15,8 @@ struct RtChapterSettings {
     int pattern = 0;
     int fresnelMode = 0;
     float epsilon = 0;  // > 0: a fixed offset for secondary rays (chapter 06's experiment)
+    bool accumulate = false;   // chapter 11: average frames progressively
+    int referenceSamples = 0;  // chapter 11: samples per rough hit in the converged CPU reference
 };
 
 struct RtChapter {

@@ -39,6 +39,15 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
         report["error"] = {{"rmse", e.rmse}, {"max_abs", e.maxAbs}, {"frac_over_1_255", e.fracOver1_255},
                            {"psnr_db", e.psnrDb}, {"non_finite_pixels", e.nonFinite},
                            {"reference_cpu_ms", cpuMs}, {"heat_map", stem + "_error.png"}};
+        if (referenceSettings.stage == ReferenceStage::Rough) {  // the reference's own error
+            double sumSq = 0;
+            for (size_t i = 3; i < expected.rgba.size(); i += 4) sumSq += double(expected.rgba[i]) * expected.rgba[i];
+            double rms = std::sqrt(sumSq / double(expected.rgba.size() / 4));
+            report["error"]["reference_samples"] = referenceSettings.samples;
+            report["error"]["reference_std_error_rms"] = rms;
+            std::printf("reference: %d samples per rough hit, its own standard error (RMS over pixels) %.2e\n",
+                        referenceSettings.samples, rms);
+        }
         std::printf("vs CPU reference: rmse %.2e, max %.2e, %.4f%% of pixels off by > 1/255, PSNR %.1f dB\n", e.rmse,
                     e.maxAbs, 100 * e.fracOver1_255, e.psnrDb);
     }

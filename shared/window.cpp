@@ -19,6 +19,9 @@ Window::Window(int width, int height, const std::string& title) {
     glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
     });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+        if (action == GLFW_PRESS) static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_.push_back(key);
+    });
 }
 
 Window::~Window() {

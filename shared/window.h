@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rg {
@@ -29,6 +30,9 @@ public:
     // until the window is visible again or closed.
     void pollEvents();
     bool resized() const { return resized_; }
+    void setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+    // The keys pressed since the last call (GLFW_KEY_*), oldest first.
+    std::vector<int> takeKeys() { return std::exchange(keys_, {}); }
 
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     VkSwapchainKHR swapchain = VK_NULL_HANDLE;
@@ -41,6 +45,7 @@ private:
     GLFWwindow* window_ = nullptr;
     VkDevice device_ = VK_NULL_HANDLE;
     bool resized_ = false;
+    std::vector<int> keys_;
 };
 
 }  // namespace rg

@@ -12,9 +12,13 @@
 
 namespace {
 
+// Chapter 11's default scene has a rough surface: Monte Carlo noise, judged
+// by test_11_rough.cpp against a converged reference instead.
+#ifndef RG_NOISY_DEFAULT_SCENE
 TEST(Reference, DefaultSceneMatches) {
     rgtest::expectMatchesReference(RG_THIS_EXE, "", RG_THIS_NAME "_default");
 }
+#endif
 
 class HardCases : public ::testing::TestWithParam<std::string> {};
 

@@ -1,0 +1,77 @@
+// Chapter 10's ray tree, for every chapter after it: how light divides at a
+// surface (Fresnel, R + T = 1), and the depth-first stack that follows both
+// branches up to the depth limit.
+#ifndef RAY_TREE_GLSL
+#define RAY_TREE_GLSL
+#include "fresnel.glsl"
+
+#define MAX_DEPTH 8                // --depth is at most this
+#define MIN_THROUGHPUT 1e-4        // branches carrying less light are not traced
+
+// [region split]
+struct Split {
+    float reflected, refracted, local;  // shares of the light; they sum to 1
+    float eta;                          // n1 / n2 for Snell's law
+};
+
+Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
+    float ior = m.params.w, transmission = m.params.z;
+    float n1 = entering ? 1.0 : ior, n2 = entering ? ior : 1.0;  // leaving: the ratio inverts
+    float F = fresnel(push.fresnelMode, m.extra.x, dot(n, -direction), n1, n2);  // 1 under total internal reflection
+    Split s;
+    s.reflected = transmission * F + (1.0 - transmission) * m.params.y;
+    s.refracted = transmission * (1.0 - F);  // R + T = 1 for the dielectric part
+    s.local = 1.0 - s.reflected - s.refracted;
+    s.eta = n1 / n2;
+    return s;
+}
+// [end]
+
+struct Branch {
+    vec3 origin;
+    uint depth;
+    vec3 direction;
+    float pad;
+    vec3 throughput;
+    float pad2;
+};
+
+float maxComponent(vec3 v) { return max(v.r, max(v.g, v.b)); }
+
+// [region tree]
+// The light arriving along one ray, following reflections and refractions
+// depth first; `rays` counts every ray traced.
+vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, inout uint rays) {
+    Branch stack[MAX_DEPTH + 2];  // depth first: at most one pending branch per level
+    int top = 0;
+    stack[top++] = Branch(origin, depth, direction, 0.0, throughput, 0.0);
+    vec3 radiance = vec3(0.0);
+    while (top > 0) {
+        Branch b = stack[--top];
+        traceClosest(b.origin, 0.0, b.direction);
+        ++rays;
+        if (payload.t < 0.0) {
+            radiance += b.throughput * payload.radiance;
+            continue;
+        }
+        GpuMaterial m = materials[payload.material];
+        vec3 n = facingNormal(payload.normal, b.direction);
+        vec3 p = payload.position;
+        Split s = splitAt(m, payload.frontFace == 1u, n, b.direction);
+        if (s.local > 0.0) radiance += b.throughput * s.local * localShading(m, p, n, -b.direction, rays);
+        if (b.depth >= push.maxDepth) continue;  // the depth limit: deeper light is lost
+        vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
+        // [region refract]
+        if (maxComponent(tr) >= MIN_THROUGHPUT) {
+            // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
+            vec3 t = refract(b.direction, n, s.eta);
+            stack[top++] = Branch(secondaryOrigin(p, -n), b.depth + 1u, normalize(t), 0.0, tr, 0.0);
+        }
+        // [end]
+        if (maxComponent(rf) >= MIN_THROUGHPUT)
+            stack[top++] = Branch(secondaryOrigin(p, n), b.depth + 1u, reflect(b.direction, n), 0.0, rf, 0.0);
+    }
+    return radiance;
+}
+// [end]
+#endif

@@ -1,0 +1,55 @@
+// Sample points for rough reflections (chapter 11), deterministic: the same
+// pixel, frame and sample index always give the same point, so a run can be
+// repeated exactly.
+#ifndef SAMPLING_GLSL
+#define SAMPLING_GLSL
+#define PATTERN_UNIFORM 0u     // independent random points
+#define PATTERN_STRATIFIED 1u  // one jittered point per cell of a sqrt(N) x sqrt(N) grid
+#define PATTERN_HAMMERSLEY 2u  // low-discrepancy (i/N, radical inverse of i), rotated per pixel
+
+// PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
+uint pcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+float toUnit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }  // [0, 1)
+
+uint pixelSeed(uvec2 pixel, uint frame) { return pcgHash(pixel.x + pcgHash(pixel.y + pcgHash(frame))); }
+
+// [region patterns]
+// Point i of n in [0,1)^2.
+vec2 samplePoint(uint pattern, uint i, uint n, uint seed) {
+    vec2 random = vec2(toUnit(pcgHash(seed + 2u * i)), toUnit(pcgHash(seed + 2u * i + 1u)));
+    if (pattern == PATTERN_STRATIFIED) {
+        uint s = uint(sqrt(float(n)) + 0.5);
+        if (s * s > n) --s;
+        if (i < s * s) return (vec2(i % s, i / s) + random) / float(s);  // jitter inside cell i
+        return random;  // n not a square: the remainder is random
+    }
+    if (pattern == PATTERN_HAMMERSLEY) {
+        vec2 p = vec2((float(i) + 0.5) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);
+        vec2 shift = vec2(toUnit(pcgHash(seed)), toUnit(pcgHash(seed ^ 0x9E3779B9u)));
+        return fract(p + shift);  // Cranley-Patterson rotation: a different set per pixel
+    }
+    return random;
+}
+// [end]
+
+// [region lobe]
+// A direction in the cone of half-angle roughness * pi/2 around the unit
+// vector r, uniform over the cone's solid angle; u in [0,1)^2.
+vec3 lobeDirection(vec3 r, float roughness, vec2 u) {
+    float cosMax = cos(roughness * 0.5 * kPi);
+    float cosTheta = 1.0 - u.x * (1.0 - cosMax);
+    float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+    float phi = 2.0 * kPi * u.y;
+    // An orthonormal basis around r (Duff et al., "Building an Orthonormal Basis, Revisited", 2017).
+    float s = r.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + r.z), b = r.x * r.y * a;
+    vec3 t1 = vec3(1.0 + s * r.x * r.x * a, s * b, -s * r.x);
+    vec3 t2 = vec3(b, s + r.y * r.y * a, -r.y);
+    return normalize(sinTheta * cos(phi) * t1 + sinTheta * sin(phi) * t2 + cosTheta * r);
+}
+// [end]
+#endif

@@ -1,0 +1,73 @@
+// Chapter 11 against its converged CPU reference (many stratified samples per
+// rough hit, with its own standard error): the error falls as samples grow,
+// better patterns beat uniform random at equal samples, accumulation over
+// frames converges like more samples, and runs repeat exactly.
+#include "harness.h"
+
+#include <fstream>
+#include <iterator>
+
+namespace {
+
+struct Measured {
+    double rmse = 1, referenceError = 1;
+};
+
+Measured render(const std::string& name, std::vector<std::string> args) {
+    std::string dir = rgtest::outputDir("11_" + name);
+    args.insert(args.end(), {"--headless", "--validation", "--reference", "--reference-samples", "4096", "--width",
+                             "160", "--height", "90", "--output", dir + "/out.png"});
+    rgtest::RunResult r = rgtest::run(RG_EXE_11, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/out.json");
+    if (!report.contains("error")) return {};
+    EXPECT_EQ(report["error"].value("non_finite_pixels", 1), 0);
+    EXPECT_EQ(report.value("validation_messages", 1), 0);
+    return {report["error"].value("rmse", 1.0), report["error"].value("reference_std_error_rms", 1.0)};
+}
+
+TEST(Chapter11, ErrorFallsWithSamplesAndTheReferenceIsConverged) {
+    Measured few = render("s4", {"--samples", "4", "--frames", "1"});
+    Measured many = render("s64", {"--samples", "64", "--frames", "1"});
+    EXPECT_LT(many.rmse, 0.5 * few.rmse) << few.rmse << " -> " << many.rmse;
+    // The reference's own error is well below what the GPU is judged by.
+    EXPECT_LT(many.referenceError, 1e-3);
+    EXPECT_LT(many.referenceError, 0.5 * many.rmse);
+}
+
+TEST(Chapter11, StratifiedAndHammersleyBeatUniformAtEqualSamples) {
+    Measured uniform = render("uniform", {"--samples", "16", "--frames", "1", "--pattern", "uniform"});
+    Measured stratified = render("stratified", {"--samples", "16", "--frames", "1", "--pattern", "stratified"});
+    Measured hammersley = render("hammersley", {"--samples", "16", "--frames", "1", "--pattern", "hammersley"});
+    EXPECT_LT(stratified.rmse, uniform.rmse);
+    EXPECT_LT(hammersley.rmse, uniform.rmse);
+}
+
+TEST(Chapter11, AccumulatingFramesConverges) {
+    Measured one = render("acc1", {"--samples", "4", "--frames", "1"});
+    Measured sixteen = render("acc16", {"--samples", "4", "--frames", "16"});
+    EXPECT_LT(sixteen.rmse, 0.5 * one.rmse) << one.rmse << " -> " << sixteen.rmse;
+}
+
+TEST(Chapter11, RunsRepeatExactly) {
+    std::string dir = rgtest::outputDir("11_repeat");
+    for (const char* name : {"a", "b"}) {
+        rgtest::RunResult r = rgtest::run(RG_EXE_11, {"--headless", "--samples", "9", "--frames", "3", "--width", "96",
+                                                      "--height", "54", "--output", dir + "/" + name + ".png"});
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    std::ifstream a(dir + "/a.pfm", std::ios::binary), b(dir + "/b.pfm", std::ios::binary);
+    std::string bytesA((std::istreambuf_iterator<char>(a)), {}), bytesB((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(bytesA.empty());
+    EXPECT_EQ(bytesA, bytesB);
+}
+
+TEST(Chapter11, BadPatternAndSampleCountAreRejected) {
+    for (auto args : {std::vector<std::string>{"--pattern", "sobol"}, {"--samples", "0"}, {"--samples", "5000"}}) {
+        args.push_back("--headless");
+        rgtest::RunResult r = rgtest::run(RG_EXE_11, args);
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+    }
+}
+
+}  // namespace
