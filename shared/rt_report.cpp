@@ -35,6 +35,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
         ImageError e = compareImages(image, expected, &heat);
         std::string stem = (png.parent_path() / png.stem()).string();
         writePng(stem + "_reference.png", expected);
+        writePfm(stem + "_reference.pfm", expected);
         writePng(stem + "_error.png", heat);
         report["error"] = {{"rmse", e.rmse}, {"max_abs", e.maxAbs}, {"frac_over_1_255", e.fracOver1_255},
                            {"psnr_db", e.psnrDb}, {"non_finite_pixels", e.nonFinite},

@@ -1,0 +1,210 @@
+// The speed-versus-error report (issue: chapter 11 and the performance page).
+// Runs the built chapters on whatever Vulkan device there is and writes, into
+// --out: perf.json (every number), perf.md (the tables), convergence.dat (for
+// the plots). Needs only the chapter executables beside it, so it runs on a
+// machine without jq or gnuplot; tools/perf-report.sh makes the plots.
+#include "output.h"
+#include "reference.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string binDir, outDir;
+
+json runChapter(const std::string& name, const std::vector<std::string>& args, const std::string& tag) {
+    std::string png = outDir + "/runs/" + tag + ".png";
+    std::string command = "'" + binDir + "/" + name + "' --headless --output '" + png + "'";
+    for (const auto& a : args) command += " '" + a + "'";
+    command += " > '" + outDir + "/runs/" + tag + ".log' 2>&1";
+    std::printf("  %-60s", (name + " " + tag).c_str());
+    std::fflush(stdout);
+    int status = std::system(command.c_str());
+    std::ifstream file(fs::path(png).replace_extension(".json"));
+    json report = file ? json::parse(file, nullptr, false) : json();
+    if (status != 0 || report.is_discarded() || report.is_null()) {
+        std::printf("FAILED (see runs/%s.log)\n", tag.c_str());
+        return json();
+    }
+    std::printf("%8.3f ms\n", report["gpu_ms"].value("median", 0.0));
+    return report;
+}
+
+std::string fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+// Least-squares slope of log(y) against log(x).
+double logSlope(const std::vector<double>& x, const std::vector<double>& y) {
+    double n = double(x.size()), sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+        double lx = std::log(x[i]), ly = std::log(y[i]);
+        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// log-log interpolation of y(x) at x0 (clamped to the measured range).
+double logInterpolate(const std::vector<double>& x, const std::vector<double>& y, double x0) {
+    if (x0 <= x.front()) return y.front();
+    for (size_t i = 1; i < x.size(); ++i)
+        if (x0 <= x[i]) {
+            double t = (std::log(x0) - std::log(x[i - 1])) / (std::log(x[i]) - std::log(x[i - 1]));
+            return std::exp(std::log(y[i - 1]) + t * (std::log(y[i]) - std::log(y[i - 1])));
+        }
+    return y.back();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"RayGlass speed-versus-error report"};
+    int width = 640, height = 360, frames = 20, studyWidth = 160, studyHeight = 90, studyFrames = 5;
+    int referenceSamples = 4096;
+    app.add_option("--bin", binDir, "Folder of the chapter executables")->required();
+    app.add_option("--out", outDir, "Folder for the results")->required();
+    app.add_option("--width", width)->capture_default_str();
+    app.add_option("--height", height)->capture_default_str();
+    app.add_option("--frames", frames, "Frames per timing run")->capture_default_str();
+    app.add_option("--study-width", studyWidth, "Chapter 11 convergence study size")->capture_default_str();
+    app.add_option("--study-height", studyHeight)->capture_default_str();
+    app.add_option("--study-frames", studyFrames)->capture_default_str();
+    app.add_option("--reference-samples", referenceSamples)->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+    fs::create_directories(outDir + "/runs");
+    const std::string scenes = binDir + "/assets/scenes/";
+    const std::string W = std::to_string(width), H = std::to_string(height), F = std::to_string(frames);
+    json data;
+    char date[32];
+    std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    data["date"] = date;
+
+    std::printf("1/3 every chapter at %dx%d, %d frames\n", width, height, frames);
+    const char* chapters[] = {"03_acceleration_structures", "04_raygen_miss", "05_ambient", "06_diffuse",
+                              "07_specular", "08_reflection", "09_fresnel", "10_refraction", "11_rough"};
+    for (const char* c : chapters) {
+        std::vector<std::string> args = {"--width", W, "--height", H, "--frames", F};
+        json r;
+        if (std::string(c) == "11_rough") {
+            json one = runChapter(c, {"--width", W, "--height", H, "--frames", F, "--samples", "1"}, "11_rough_1spp");
+            if (!one.is_null()) one["label"] = "11_rough (1 sample per hit, progressive)";
+            if (!one.is_null()) data["chapters"].push_back(one);
+            args.insert(args.end(), {"--samples", "25", "--no-accumulate"});
+            r = runChapter(c, args, "11_rough_25spp");
+            if (!r.is_null()) r["label"] = "11_rough (25 samples per hit)";
+        } else {
+            r = runChapter(c, args, c);
+        }
+        if (!r.is_null()) data["chapters"].push_back(r);
+        if (!r.is_null()) data["device"] = r["device"], data["driver"] = r["driver"];
+    }
+
+    std::printf("2/3 chapter 11 convergence at %dx%d (scene rough.json), reference %d samples per hit\n", studyWidth,
+                studyHeight, referenceSamples);
+    const std::string SW = std::to_string(studyWidth), SH = std::to_string(studyHeight);
+    json ref = runChapter("11_rough", {"--scene", scenes + "rough.json", "--width", SW, "--height", SH, "--frames", "1",
+                                       "--samples", "1", "--reference", "--reference-samples",
+                                       std::to_string(referenceSamples)}, "11_reference");
+    rg::FloatImage reference = rg::readPfm(outDir + "/runs/11_reference_reference.pfm");
+    data["study"] = {{"width", studyWidth}, {"height", studyHeight}, {"frames", studyFrames},
+                     {"reference_samples", referenceSamples},
+                     {"reference_std_error_rms", ref["error"].value("reference_std_error_rms", 0.0)}};
+    const int counts[] = {1, 4, 9, 16, 25, 64, 100};
+    const char* patterns[] = {"uniform", "stratified", "hammersley"};
+    std::ofstream dat(outDir + "/convergence.dat");
+    dat << "# pattern samples gpu_ms rmse\n";
+    for (const char* p : patterns) {
+        std::vector<double> n, ms, err;
+        for (int c : counts) {
+            std::string tag = std::string("11_") + p + "_" + std::to_string(c);
+            json r = runChapter("11_rough", {"--scene", scenes + "rough.json", "--width", SW, "--height", SH,
+                                             "--frames", std::to_string(studyFrames), "--samples", std::to_string(c),
+                                             "--pattern", p, "--no-accumulate"}, tag);
+            if (r.is_null()) continue;
+            rg::ImageError e = rg::compareImages(rg::readPfm(outDir + "/runs/" + tag + ".pfm"), reference, nullptr);
+            n.push_back(c), ms.push_back(r["gpu_ms"].value("median", 0.0)), err.push_back(e.rmse);
+            dat << p << " " << c << " " << ms.back() << " " << e.rmse << "\n";
+        }
+        data["study"]["patterns"][p] = {{"samples", n}, {"gpu_ms", ms}, {"rmse", err},
+                                        {"slope", n.size() > 1 ? logSlope(n, err) : 0.0}};
+        dat << "\n\n";
+    }
+    // Error at equal time: each pattern's RMSE at the GPU times of uniform's runs.
+    auto& P = data["study"]["patterns"];
+    std::vector<double> uMs = P["uniform"]["gpu_ms"], uErr = P["uniform"]["rmse"];
+    for (const char* p : {"stratified", "hammersley"}) {
+        std::vector<double> ms = P[p]["gpu_ms"], err = P[p]["rmse"];
+        std::vector<double> ratios;
+        for (size_t i = 0; i < uMs.size(); ++i) ratios.push_back(logInterpolate(ms, err, uMs[i]) / uErr[i]);
+        P[p]["equal_time_ratio_to_uniform"] = ratios;
+    }
+
+    std::printf("3/3 Fresnel: Schlick against exact on glass_sphere.json\n");
+    json fresnel;
+    for (const char* mode : {"schlick-ior", "exact"}) {
+        json r = runChapter("10_refraction", {"--scene", scenes + "glass_sphere.json", "--width", W, "--height", H,
+                                              "--frames", F, "--fresnel", mode}, std::string("10_fresnel_") + mode);
+        fresnel[mode] = r.is_null() ? json() : r["gpu_ms"];
+    }
+    rg::ImageError fe = rg::compareImages(rg::readPfm(outDir + "/runs/10_fresnel_schlick-ior.pfm"),
+                                          rg::readPfm(outDir + "/runs/10_fresnel_exact.pfm"), nullptr);
+    fresnel["image_rmse"] = fe.rmse;
+    fresnel["image_frac_over_1_255"] = fe.fracOver1_255;
+    data["fresnel"] = fresnel;
+    std::ofstream(outDir + "/perf.json") << data.dump(2) << "\n";
+
+    // The tables.
+    std::ofstream md(outDir + "/perf.md");
+    md << "### " << data.value("device", "?") << "\n\n"
+       << "Driver: " << data.value("driver", "?") << ". Measured " << data["date"].get<std::string>()
+       << " with `tools/perf-report.sh`. GPU times are medians of timestamp queries.\n\n"
+       << "**Every chapter** at " << width << "x" << height << ", " << frames << " frames:\n\n"
+       << "| chapter | median ms | min ms | max ms | rays per frame | Mrays/s |\n| --- | --- | --- | --- | --- | --- |\n";
+    for (const auto& r : data["chapters"]) {
+        std::string name = r.value("label", r.value("chapter", ""));
+        md << "| " << name << " | " << fmt("%.3f", r["gpu_ms"].value("median", 0.0)) << " | "
+           << fmt("%.3f", r["gpu_ms"].value("min", 0.0)) << " | " << fmt("%.3f", r["gpu_ms"].value("max", 0.0)) << " | "
+           << (r.contains("rays_per_frame") ? std::to_string(r["rays_per_frame"].get<long>()) : "-") << " | "
+           << (r.contains("mrays_per_s") ? fmt("%.1f", r["mrays_per_s"].get<double>()) : "-") << " |\n";
+    }
+    md << "\n**Chapter 11, samples per hit against the converged reference** (scene `rough.json`, " << studyWidth << "x"
+       << studyHeight << ", one frame each, median of " << studyFrames << "; reference: " << referenceSamples
+       << " stratified samples per hit, its own RMS standard error "
+       << fmt("%.1e", data["study"]["reference_std_error_rms"].get<double>()) << "):\n\n"
+       << "| pattern | samples | GPU ms | RMSE |\n| --- | --- | --- | --- |\n";
+    for (const char* p : patterns)
+        for (size_t i = 0; i < P[p]["samples"].size(); ++i)
+            md << "| " << p << " | " << P[p]["samples"][i].get<double>() << " | "
+               << fmt("%.3f", P[p]["gpu_ms"][i].get<double>()) << " | " << fmt("%.2e", P[p]["rmse"][i].get<double>())
+               << " |\n";
+    md << "\nLog-log slope of RMSE against samples (-0.5 is independent random sampling):";
+    for (const char* p : patterns) md << " " << p << " " << fmt("%.2f", P[p]["slope"].get<double>()) << ";";
+    md << "\n\nAt equal GPU time, RMSE relative to uniform random (at uniform's times for 1 ... 100 samples):\n\n";
+    for (const char* p : {"stratified", "hammersley"}) {
+        md << "- " << p << ":";
+        for (double r : P[p]["equal_time_ratio_to_uniform"]) md << " " << fmt("%.2f", r);
+        md << "\n";
+    }
+    md << "\n**Fresnel** (chapter 10, `glass_sphere.json`, " << width << "x" << height << "): Schlick with f0 from the "
+       << "IOR " << fmt("%.3f", fresnel["schlick-ior"].value("median", 0.0)) << " ms, exact "
+       << fmt("%.3f", fresnel["exact"].value("median", 0.0)) << " ms; the two images differ by RMSE "
+       << fmt("%.2e", fe.rmse) << ", " << fmt("%.2f", 100 * fe.fracOver1_255) << " % of pixels by more than 1/255.\n";
+    std::printf("wrote %s/perf.json, perf.md, convergence.dat\n", outDir.c_str());
+    return 0;
+}
