@@ -1,6 +1,7 @@
 #include "accel.h"
 
 #include "gpu_timer.h"
+#include "mesh.h"
 #include "vk_check.h"
 
 #include <cstring>
@@ -133,7 +134,7 @@ AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion
 }  // namespace
 
 // [region unit_shapes]
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion) {
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel) {
     UnitShapes shapes;
     DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
     const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
@@ -177,9 +178,25 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion) {
     };
     shapes.stats.push_back({.name = "unit_sphere", .geometry = "aabbs"});
     shapes.sphere = buildCompactedBlas(gpu, deletion, aabbs, 1, shapes.stats.back());
+    // [end]
+
+    if (sphereMeshLevel > 0) {  // the tessellated alternative (performance.md)
+        Mesh mesh = icosphere(sphereMeshLevel);
+        const VkBufferUsageFlags meshUsage = input | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        shapes.meshVertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(),
+                                                 mesh.vertices.size() * sizeof(glm::vec3), meshUsage);
+        shapes.meshIndices = createDeviceBuffer(gpu, deletion, mesh.indices.data(),
+                                                mesh.indices.size() * sizeof(uint32_t), meshUsage);
+        VkAccelerationStructureGeometryKHR meshTriangles = triangles;
+        meshTriangles.geometry.triangles.vertexData.deviceAddress = shapes.meshVertices.address;
+        meshTriangles.geometry.triangles.maxVertex = uint32_t(mesh.vertices.size() - 1);
+        meshTriangles.geometry.triangles.indexData.deviceAddress = shapes.meshIndices.address;
+        shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel), .geometry = "triangles"});
+        shapes.meshSphere = buildCompactedBlas(gpu, deletion, meshTriangles, uint32_t(mesh.indices.size() / 3),
+                                               shapes.stats.back());
+    }
     return shapes;
 }
-// [end]
 
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
     VkTransformMatrixKHR t;  // 3 rows x 4 columns, row-major; glm is column-major
@@ -194,13 +211,15 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& o = scene.objects[i];
         bool sphere = o.type == ShapeType::Sphere;
+        bool mesh = sphere && shapes.meshSphere.handle != VK_NULL_HANDLE;  // --sphere-mesh
         instances.push_back({
             .transform = toVkTransform(o.transform),
             .instanceCustomIndex = uint32_t(i),  // gl_InstanceCustomIndexEXT: the object
             .mask = 0xFF,                        // every ray sees every instance
-            .instanceShaderBindingTableRecordOffset = sphere ? 1u : 0u,  // hit group
+            .instanceShaderBindingTableRecordOffset = mesh ? 2u : sphere ? 1u : 0u,  // hit group
             .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // quads are two-sided
-            .accelerationStructureReference = sphere ? shapes.sphere.address : shapes.quad.address,
+            .accelerationStructureReference = mesh ? shapes.meshSphere.address
+                                              : sphere ? shapes.sphere.address : shapes.quad.address,
         });
     }
     return instances;

@@ -30,9 +30,13 @@ struct BlasStats {
 // analytic unit sphere (an intersection shader finds the sphere inside it).
 struct UnitShapes {
     AccelerationStructure quad, sphere;
+    AccelerationStructure meshSphere;  // only with sphereMeshLevel > 0
+    Buffer meshVertices, meshIndices;  // its triangles, also read by its closest-hit shader
     std::vector<BlasStats> stats;
 };
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion);
+// sphereMeshLevel > 0 also builds an icosphere of that subdivision level,
+// which makeInstances then uses for every sphere instead of the analytic one.
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0);
 
 // TLAS instances: one per object, in object order (instance index = object
 // index), each pointing at the quad or sphere BLAS with the object's transform.

@@ -77,6 +77,8 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RT_BINDING_LIGHTS 5     // GpuLight[]
 #define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
 #define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
+#define RT_BINDING_MESH_VERTICES 8  // float[] x,y,z of the tessellated unit sphere (--sphere-mesh)
+#define RT_BINDING_MESH_INDICES 9   // uint[] three per triangle
 
 #define SHAPE_SPHERE 0u
 #define SHAPE_QUAD 1u
@@ -84,8 +86,9 @@ RG_INLINE vec3 instanceColor(uint i) {
 // Hit groups in the SBT: one per shape and ray type (see shared/sbt.h).
 #define HIT_GROUP_QUAD 0u
 #define HIT_GROUP_SPHERE 1u
+#define HIT_GROUP_MESH_SPHERE 2u  // a tessellated sphere (chapters 05+, --sphere-mesh)
 #define RAY_TYPE_PRIMARY 0u  // sbtRecordOffset of camera and bounce rays
-#define RAY_TYPE_SHADOW 2u   // sbtRecordOffset of shadow rays (chapter 06 on)
+#define RAY_TYPE_SHADOW 3u   // sbtRecordOffset of shadow rays (chapter 06 on): after the 3 primary groups
 #define MISS_SKY 0u
 #define MISS_SHADOW 1u
 

@@ -17,6 +17,9 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     RtChapterSettings settings;
     auto extra = [&](CLI::App& app, Options& o) {
         addSceneOptions(app, o, true);
+        app.add_option("--sphere-mesh", settings.sphereMesh,
+                       "Spheres as icospheres subdivided this often (1-7; 0: analytic, the default)")
+            ->check(CLI::Range(0, 7));
         if (chapter.options) chapter.options(app, settings);
     };
     if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
@@ -26,19 +29,21 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         initApp(app, opts, chapter.title);
         Image target = createImage2D(app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        RtScene rt = uploadScene(app.gpu, app.deletion, scene, target);
+        RtScene rt = uploadScene(app.gpu, app.deletion, scene, target, settings.sphereMesh);
 
         // [region shaders]
-        // SBT: raygen | miss: sky, shadow | hit: quad, sphere (primary rays),
-        // quad, sphere (shadow rays: no closest hit; the sphere still needs
-        // its intersection shader to be found at all).
+        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, sphere mesh
+        // (primary rays), then the same three for shadow rays: no closest hit;
+        // the sphere still needs its intersection shader to be found at all.
         RtShaders shaders{
             .raygen = chapter.name + "/raygen.rgen",
             .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
             .hitGroups = {{.closestHit = "common/quad.rchit"},
                           {.closestHit = "common/sphere.rchit", .intersection = "common/sphere.rint"},
+                          {.closestHit = "common/mesh_sphere.rchit"},
                           {},
-                          {.intersection = "common/sphere.rint"}},
+                          {.intersection = "common/sphere.rint"},
+                          {}},
         };
         // [end]
         RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),

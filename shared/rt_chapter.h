@@ -17,6 +17,7 @@ struct RtChapterSettings {
     float epsilon = 0;  // > 0: a fixed offset for secondary rays (chapter 06's experiment)
     bool accumulate = false;   // chapter 11: average frames progressively
     int referenceSamples = 0;  // chapter 11: samples per rough hit in the converged CPU reference
+    int sphereMesh = 0;        // > 0: spheres as icospheres of this subdivision level (performance.md)
 };
 
 struct RtChapter {

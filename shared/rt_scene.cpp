@@ -47,11 +47,12 @@ Buffer storage(const Gpu& gpu, DeletionQueue& deletion, const std::vector<T>& da
 glm::vec4 v4(const glm::dvec3& v, double w = 0) { return glm::vec4(glm::dvec4(v, w)); }
 }  // namespace
 
-RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target) {
+RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
+                    int sphereMeshLevel) {
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
-    rt.shapes = buildUnitShapes(gpu, deletion);
+    rt.shapes = buildUnitShapes(gpu, deletion, sphereMeshLevel);
     rt.instances = makeInstances(scene, rt.shapes);
     rt.tlas = buildTlas(gpu, deletion, rt.instances);
 
@@ -95,6 +96,8 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         {RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
         {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
         {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+        {RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+        {RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
     });
     VkDescriptorSet set = rt.descriptors.set;
     writeAccelerationStructure(gpu, set, RT_BINDING_TLAS, rt.tlas.as.handle);
@@ -105,6 +108,11 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     writeBuffer(gpu, set, RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.lights);
     writeBuffer(gpu, set, RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.sky);
     writeBuffer(gpu, set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
+    // Without a sphere mesh the bindings still need a buffer: a small unused one.
+    Buffer meshVertices = rt.shapes.meshVertices, meshIndices = rt.shapes.meshIndices;
+    if (!meshVertices.handle) meshVertices = meshIndices = storage(gpu, deletion, std::vector<float>(4, 0.0f));
+    writeBuffer(gpu, set, RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshVertices);
+    writeBuffer(gpu, set, RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshIndices);
     return rt;
 }
 

@@ -71,4 +71,26 @@ TEST(Chapter10, BallLensInvertsAndMagnifiesAsPredicted) {
     EXPECT_NEAR(green.dy, 0, 0.5);
 }
 
+// Tessellated spheres (--sphere-mesh) converge to the analytic one: the
+// error against the analytic reference falls with the subdivision level.
+TEST(Chapter10, TessellatedSpheresConvergeToTheAnalyticOne) {
+    double previous = 1e9;
+    for (int level : {1, 3, 5}) {
+        std::string dir = rgtest::outputDir("10_mesh_" + std::to_string(level));
+        rgtest::RunResult r = rgtest::run(RG_EXE_10, {"--headless", "--validation", "--reference", "--sphere-mesh",
+                                                      std::to_string(level), "--scene",
+                                                      RG_SOURCE_DIR "/assets/scenes/glass_sphere.json", "--width", "96",
+                                                      "--height", "72", "--frames", "1", "--output", dir + "/m.png"});
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        nlohmann::json report = rgtest::readJson(dir + "/m.json");
+        double rmse = report["error"].value("rmse", 0.0);
+        EXPECT_LT(rmse, previous) << "level " << level;
+        EXPECT_GT(rmse, 1e-5) << "a mesh is not the sphere";
+        EXPECT_EQ(report.value("validation_messages", 1), 0);
+        previous = rmse;
+    }
+    rgtest::RunResult bad = rgtest::run(RG_EXE_10, {"--headless", "--sphere-mesh", "8"});
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+}
+
 }  // namespace
