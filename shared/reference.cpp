@@ -152,6 +152,35 @@ double referenceFresnel(int mode, double f0, double cosI, double n1, double n2) 
     return f0 + (1 - f0) * std::pow(1 - c, 5);
 }
 
+namespace {
+// How light divides where a ray meets material m (chapters 08-11), and the
+// indices on both sides; n faces the ray.
+struct Split {
+    double reflected = 0, refracted = 0, local = 1, n1 = 1, n2 = 1;
+};
+
+Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering, double cosI) {
+    Split s;
+    s.n1 = entering ? 1.0 : m.ior;
+    s.n2 = entering ? m.ior : 1.0;
+    s.reflected = m.reflectivity;
+    if (settings.stage >= ReferenceStage::Fresnel) {
+        double F = referenceFresnel(settings.fresnelMode, m.f0, cosI, s.n1, s.n2);
+        s.reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
+        if (settings.stage >= ReferenceStage::Refraction) s.refracted = m.transmission * (1 - F);
+    }
+    s.local = 1 - s.reflected - s.refracted;
+    return s;
+}
+
+// Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing the ray.
+glm::dvec3 refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2) {
+    double eta = n1 / n2, cosI = -glm::dot(n, d);
+    double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+    return glm::normalize(eta * d + (eta * cosI - cosT) * n);
+}
+}  // namespace
+
 glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
                                            const glm::dvec3& n, const glm::dvec3& v) const {
     glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
@@ -183,18 +212,11 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, n, v);
 
     // How the light divides at this surface (chapters 08-10).
-    double reflected = m.reflectivity, refracted = 0;
-    bool entering = hit.object < scene_.objects.size() && (scene_.objects[hit.object].type == ShapeType::Sphere
-                                                               ? hit.frontFace : front);
-    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
-    if (settings.stage >= ReferenceStage::Fresnel) {
-        double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(n, v), n1, n2);
-        reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
-        if (settings.stage >= ReferenceStage::Refraction) refracted = m.transmission * (1 - F);
-    }
-    double local = 1 - reflected - refracted;
+    bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
+    Split split = splitAt(settings, m, entering, glm::dot(n, v));
+    double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (local > 0) color += local * localShading(settings, m, p, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, n, v);
     if (depth >= settings.maxDepth) return color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
@@ -206,10 +228,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
         color += reflected * radiance(settings, secondaryOrigin(p, n), r, depth + 1, throughput * reflected);
     }
     if (refracted > 0 && strongEnough(refracted)) {
-        // Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing the ray.
-        double eta = n1 / n2, cosI = glm::dot(n, v);
-        double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
-        glm::dvec3 t = glm::normalize(eta * direction + (eta * cosI - cosT) * n);
+        glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
         color += refracted * radiance(settings, secondaryOrigin(p, -n), t, depth + 1, throughput * refracted);
     }
     return color;
@@ -233,16 +252,12 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     if (m.roughness <= 0 || settings.maxDepth == 0) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
     glm::dvec3 p = origin + hit.t * direction, v = -direction;
     bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
-    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
-    double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(n, v), n1, n2);
-    double reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
-    double refracted = m.transmission * (1 - F), local = 1 - reflected - refracted;
+    Split split = splitAt(settings, m, entering, glm::dot(n, v));
+    double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (local > 0) color += local * localShading(settings, m, p, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, n, v);
     if (refracted >= 1e-4) {
-        double eta = n1 / n2, cosI = glm::dot(n, v);
-        double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
-        glm::dvec3 t = glm::normalize(eta * direction + (eta * cosI - cosT) * n);
+        glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
         color += refracted * radiance(settings, secondaryOrigin(p, -n), t, 1, glm::dvec3(refracted));
     }
     if (reflected < 1e-4) return color;
