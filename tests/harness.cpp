@@ -120,11 +120,14 @@ std::vector<std::string> hardCaseScenes() {
     return scenes;
 }
 
+bool haveDisplay() {
+    if (std::getenv("DISPLAY")) return true;
+    EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
+    return false;
+}
+
 void expectCleanWindowedRun(const std::string& exe, const std::string& name, int frames) {
-    if (!std::getenv("DISPLAY")) {
-        EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
-        GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
-    }
+    if (!haveDisplay()) GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
     std::string dir = outputDir(name);
     RunResult r = run(exe, {"--validation", "--width", "160", "--height", "90", "--frames", std::to_string(frames),
                             "--output", dir + "/" + name + ".png"});

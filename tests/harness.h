@@ -35,6 +35,10 @@ int display8(double linear);
 // Every report from a clean run: right size, validation clean, GPU time measured.
 void expectCleanReport(const nlohmann::json& report, const std::string& chapter, int width, int height);
 
+// True when a display exists. Under xvfb-run (RG_REQUIRE_DISPLAY=1) a missing
+// display is also a test failure; elsewhere the caller skips.
+bool haveDisplay();
+
 // A windowed run under xvfb-run: exit 0, a report that says windowed, no
 // validation message. Skips without a display, fails under RG_REQUIRE_DISPLAY.
 void expectCleanWindowedRun(const std::string& exe, const std::string& name, int frames);

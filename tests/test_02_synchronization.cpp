@@ -7,13 +7,6 @@
 
 namespace {
 
-// Under xvfb-run (RG_REQUIRE_DISPLAY=1) a missing display is a failure.
-bool haveDisplay() {
-    if (std::getenv("DISPLAY")) return true;
-    EXPECT_EQ(std::getenv("RG_REQUIRE_DISPLAY"), nullptr) << "xvfb-run gave no DISPLAY";
-    return false;
-}
-
 constexpr int kChecker = 32;
 
 void expectPatternAtFrame(const rgtest::Png& png, int lastFrame) {
@@ -47,7 +40,7 @@ TEST(Chapter02, AnimatesDeterministicallyWithValidationClean) {
 
 // Run by ctest under xvfb-run (see tests/CMakeLists.txt).
 TEST(Chapter02Windowed, PresentsUnderXvfbWithValidationClean) {
-    if (!haveDisplay()) GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
+    if (!rgtest::haveDisplay()) GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
     std::string dir = rgtest::outputDir("02_window");
     rgtest::RunResult r = rgtest::run(RG_EXE_02, {"--validation", "--width", "160", "--height", "90", "--frames",
                                                   "30", "--output", dir + "/02.png"});
@@ -60,7 +53,7 @@ TEST(Chapter02Windowed, PresentsUnderXvfbWithValidationClean) {
 }
 
 TEST(Chapter02Windowed, OmittedBarrierIsReportedBySyncValidation) {
-    if (!haveDisplay()) GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
+    if (!rgtest::haveDisplay()) GTEST_SKIP() << "no DISPLAY: run through xvfb-run";
     std::string dir = rgtest::outputDir("02_hazard");
     rgtest::RunResult r = rgtest::run(RG_EXE_02, {"--validation", "--omit-barrier", "--width", "64", "--height",
                                                   "64", "--frames", "3", "--output", dir + "/02.png"});
