@@ -8,8 +8,13 @@ repository), dedented, in a fenced block; and a block between
     <!-- diff: OLD NEW -->  ...  <!-- end -->
 holds the unified diff from file or folder OLD to NEW.
 
+Regions nest: each `// [end]` closes the innermost open region, and the
+markers of inner regions are left out of listings and diffs. A file whose
+markers do not balance is an error.
+
     tools/docs.py --write   rewrite those blocks from the code
     tools/docs.py --check   exit 1 (naming the page and block) if any is stale
+    --root DIR              the repository to work on (default: this one)
 """
 import difflib
 import pathlib
@@ -19,57 +24,91 @@ import textwrap
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BLOCK = re.compile(r"(<!-- (snippet|diff): ([^>]*?) -->\n)(.*?)(<!-- end -->)", re.S)
+OPEN = re.compile(r"^\s*(?://|#)\s*\[region ([\w.-]+)\]\s*$")
+CLOSE = re.compile(r"^\s*(?://|#)\s*\[end\]\s*$")
 LANG = {".cpp": "cpp", ".h": "cpp", ".glsl": "glsl", ".comp": "glsl", ".rgen": "glsl", ".rchit": "glsl",
         ".rmiss": "glsl", ".rint": "glsl", ".rahit": "glsl", ".json": "json", ".sh": "bash", ".txt": "cmake"}
 
 
-def region(path, name):
-    lines = (ROOT / path).read_text().splitlines()
-    start = [i for i, l in enumerate(lines) if l.strip() == f"// [region {name}]"]
-    if len(start) != 1:
-        raise SystemExit(f"docs.py: region '{name}' found {len(start)} times in {path}")
-    end = next(i for i in range(start[0] + 1, len(lines)) if lines[i].strip() == "// [end]")
-    body = textwrap.dedent("\n".join(lines[start[0] + 1:end]))
+class DocsError(Exception):
+    pass
+
+
+def is_marker(line):
+    return bool(OPEN.match(line) or CLOSE.match(line))
+
+
+def regions(path, lines):
+    """{name: (first line, end line)} of every region, nested ones included."""
+    found, stack = {}, []
+    for i, line in enumerate(lines):
+        if m := OPEN.match(line):
+            stack.append((m.group(1), i))
+        elif CLOSE.match(line):
+            if not stack:
+                raise DocsError(f"{path}:{i + 1}: '[end]' closes no region")
+            name, start = stack.pop()
+            if name in found:
+                raise DocsError(f"{path}: region '{name}' defined twice")
+            found[name] = (start + 1, i)
+    if stack:
+        name, start = stack[-1]
+        raise DocsError(f"{path}:{start + 1}: region '{name}' is never closed")
+    return found
+
+
+def region(root, path, name):
+    lines = (root / path).read_text().splitlines()
+    spans = regions(path, lines)
+    if name not in spans:
+        raise DocsError(f"{path}: no region '{name}'")
+    first, end = spans[name]
+    body = textwrap.dedent("\n".join(l for l in lines[first:end] if not is_marker(l)))
     return f"```{LANG.get(pathlib.Path(path).suffix, '')}\n{body}\n```\n"
 
 
-def files_of(path):
-    p = ROOT / path
+def files_of(root, path):
+    p = root / path
     if p.is_dir():
         return {f.relative_to(p).as_posix(): f for f in sorted(p.rglob("*")) if f.is_file()}
-    return {p.name: p}
+    if not p.is_file():
+        raise DocsError(f"{path}: no such file or folder")
+    return {"": p}  # two single files are compared whatever their names
 
 
-def diff(old, new):
-    a, b = files_of(old), files_of(new)
+def code_lines(path):
+    return [l for l in path.read_text().splitlines() if not is_marker(l)]
+
+
+def diff(root, old, new):
+    a, b = files_of(root, old), files_of(root, new)
     out = []
     for name in sorted(set(a) | set(b)):
-        la = a[name].read_text().splitlines() if name in a else []
-        lb = b[name].read_text().splitlines() if name in b else []
-        oldname = f"{old}/{name}" if (ROOT / old).is_dir() else old
-        newname = f"{new}/{name}" if (ROOT / new).is_dir() else new
+        la = code_lines(a[name]) if name in a else []
+        lb = code_lines(b[name]) if name in b else []
+        oldname = f"{old}/{name}" if name else old
+        newname = f"{new}/{name}" if name else new
         out += difflib.unified_diff(la, lb, oldname if name in a else "/dev/null",
                                     newname if name in b else "/dev/null", n=2, lineterm="")
     return "```diff\n" + "\n".join(out) + "\n```\n"
 
 
-def render(kind, arg):
+def render(root, kind, arg):
     if kind == "snippet":
         path, name = arg.split("#")
-        return region(path, name)
+        return region(root, path, name)
     old, new = arg.split()
-    return diff(old, new)
+    return diff(root, old, new)
 
 
-def main():
-    mode = sys.argv[1] if len(sys.argv) > 1 else "--check"
+def run(root, mode):
     stale = []
-    for page in sorted((ROOT / "docs").glob("*.md")):
+    for page in sorted((root / "docs").rglob("*.md")):
         text = page.read_text()
         def fill(m):
-            want = render(m.group(2), m.group(3).strip())
+            want = render(root, m.group(2), m.group(3).strip())
             if m.group(4) != want:
-                stale.append(f"{page.relative_to(ROOT)}: {m.group(2)} {m.group(3).strip()}")
+                stale.append(f"{page.relative_to(root)}: {m.group(2)} {m.group(3).strip()}")
             return m.group(1) + want + m.group(5)
         new = BLOCK.sub(fill, text)
         if mode == "--write" and new != text:
@@ -81,5 +120,24 @@ def main():
     return 0
 
 
+def main(argv):
+    mode, root = "--check", ROOT
+    args = list(argv)
+    while args:
+        a = args.pop(0)
+        if a in ("--check", "--write"):
+            mode = a
+        elif a == "--root" and args:
+            root = pathlib.Path(args.pop(0)).resolve()
+        else:
+            print(f"docs.py: unknown argument {a} (use --check, --write, --root DIR)", file=sys.stderr)
+            return 2
+    try:
+        return run(root, mode)
+    except DocsError as e:
+        print(f"docs.py: {e}", file=sys.stderr)
+        return 1
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

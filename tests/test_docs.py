@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""Tests of tools/docs.py, the check that keeps quoted code true to the code:
+on a small repository made in a temporary folder, a nested region is quoted
+whole and without inner markers, and a page holding a truncated listing (what
+the old parser produced) fails the check."""
+import pathlib
+import subprocess
+import sys
+import tempfile
+import unittest
+
+DOCS_PY = pathlib.Path(__file__).resolve().parent.parent / "tools" / "docs.py"
+
+SOURCE = """\
+void f() {
+    // [region outer]
+    int a = 1;
+    // [region inner]
+    int b = 2;
+    // [end]
+    int c = 3;
+    // [end]
+}
+"""
+
+WHOLE = "```glsl\nint a = 1;\nint b = 2;\nint c = 3;\n```\n"
+TRUNCATED = "```glsl\nint a = 1;\n// [region inner]\nint b = 2;\n```\n"
+
+
+def docs(root, *args):
+    return subprocess.run([sys.executable, str(DOCS_PY), "--root", str(root), *args],
+                          capture_output=True, text=True)
+
+
+class DocsCheck(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = pathlib.Path(self.tmp.name)
+        (self.root / "docs").mkdir()
+        (self.root / "a.rgen").write_text(SOURCE)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def page(self, body, name="p.md"):
+        (self.root / "docs" / name).write_text(body)
+
+    def test_nested_region_quoted_whole_without_markers(self):
+        self.page("<!-- snippet: a.rgen#outer -->\n<!-- end -->\n")
+        self.assertEqual(docs(self.root, "--write").returncode, 0)
+        text = (self.root / "docs" / "p.md").read_text()
+        self.assertIn(WHOLE, text)
+        self.assertNotIn("[region", text.replace("<!-- snippet", ""))
+        self.assertEqual(docs(self.root, "--check").returncode, 0)
+
+    def test_inner_region_alone(self):
+        self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
+        docs(self.root, "--write")
+        self.assertIn("```glsl\nint b = 2;\n```\n", (self.root / "docs" / "p.md").read_text())
+
+    def test_truncated_listing_fails_the_check(self):
+        self.page("<!-- snippet: a.rgen#outer -->\n" + TRUNCATED + "<!-- end -->\n")
+        r = docs(self.root, "--check")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("p.md: snippet a.rgen#outer", r.stdout)
+
+    def test_diff_leaves_markers_out(self):
+        (self.root / "b.rgen").write_text(SOURCE.replace("int c = 3;", "int c = 4;"))
+        self.page("<!-- diff: a.rgen b.rgen -->\n<!-- end -->\n")
+        self.assertEqual(docs(self.root, "--write").returncode, 0)
+        text = (self.root / "docs" / "p.md").read_text()
+        self.assertIn("-    int c = 3;\n+    int c = 4;", text)
+        self.assertNotIn("// [", text)
+
+    def test_unbalanced_markers_are_an_error(self):
+        (self.root / "a.rgen").write_text(SOURCE.replace("    // [end]\n}", "}"))
+        self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
+        r = docs(self.root, "--check")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("never closed", r.stderr)
+
+    def test_missing_region_is_an_error(self):
+        self.page("<!-- snippet: a.rgen#nothere -->\n<!-- end -->\n")
+        r = docs(self.root, "--check")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("no region 'nothere'", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
