@@ -11,6 +11,10 @@ namespace rg {
 
 namespace {
 
+// [region create_as]
+// An acceleration structure is a view of a buffer (like an image view of an
+// image): make the buffer, then the structure on it. Its address is what a
+// TLAS instance (or, for the TLAS, the shader's descriptor) refers to.
 AccelerationStructure createAccelerationStructure(const Gpu& gpu, DeletionQueue& deletion,
                                                   VkAccelerationStructureTypeKHR type, VkDeviceSize size) {
     AccelerationStructure as;
@@ -35,6 +39,7 @@ AccelerationStructure createAccelerationStructure(const Gpu& gpu, DeletionQueue&
     as.address = vkGetAccelerationStructureDeviceAddressKHR(gpu.device, &address);
     return as;
 }
+// [end]
 
 VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
     return (value + alignment - 1) / alignment * alignment;
@@ -198,12 +203,14 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     return shapes;
 }
 
+// [region transform]
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
     VkTransformMatrixKHR t;  // 3 rows x 4 columns, row-major; glm is column-major
     for (int row = 0; row < 3; ++row)
         for (int col = 0; col < 4; ++col) t.matrix[row][col] = float(m[col][row]);
     return t;
 }
+// [end]
 
 // [region make_instances]
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes) {

@@ -134,7 +134,6 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice device, VkSurfaceK
     VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &v12};
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!v12.bufferDeviceAddress) missing.push_back("bufferDeviceAddress");
-    if (!v12.timelineSemaphore) missing.push_back("timelineSemaphore");
     if (!v12.hostQueryReset) missing.push_back("hostQueryReset");
     if (!as.accelerationStructure) missing.push_back("accelerationStructure");
     if (!rt.rayTracingPipeline) missing.push_back("rayTracingPipeline");
@@ -249,7 +248,6 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, Deleti
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = &accelerationStructure,
         .hostQueryReset = VK_TRUE,       // reset timestamp queries from the CPU
-        .timelineSemaphore = VK_TRUE,    // chapter 02
         .bufferDeviceAddress = VK_TRUE,  // acceleration structures and the SBT live at GPU addresses
     };
     std::vector<const char*> extensions = requiredDeviceExtensions(present);

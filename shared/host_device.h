@@ -112,6 +112,7 @@ struct GpuObject {
 };
 RG_SIZE(GpuObject, 16);
 
+// [region material]
 struct GpuMaterial {
     vec4 ka;
     vec4 kd;
@@ -120,6 +121,7 @@ struct GpuMaterial {
     vec4 extra;   // f0, roughness, unused, unused
 };
 RG_SIZE(GpuMaterial, 80);
+// [end]
 
 struct GpuLight {
     vec4 position;

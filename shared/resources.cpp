@@ -29,6 +29,10 @@ Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, 
     VK_CHECK(vkCreateBuffer(gpu.device, &info, nullptr, &buffer.handle));
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(gpu.device, buffer.handle, &requirements);
+    // [region device_address]
+    // A buffer that the GPU reads by address (build inputs, acceleration
+    // structures, the SBT) needs the usage bit and memory allocated with
+    // DEVICE_ADDRESS; vkGetBufferDeviceAddress then gives a 64-bit pointer.
     bool addressable = usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     VkMemoryAllocateFlagsInfo flags{
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
@@ -48,6 +52,7 @@ Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, 
         VkBufferDeviceAddressInfo address{.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = buffer.handle};
         buffer.address = vkGetBufferDeviceAddress(gpu.device, &address);
     }
+    // [end]
     VkDevice device = gpu.device;
     deletion.push([device, buffer] {
         vkDestroyBuffer(device, buffer.handle, nullptr);

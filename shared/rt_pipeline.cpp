@@ -99,6 +99,7 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
     return p;
 }
 
+// [region trace_rays]
 void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set, const void* push, uint32_t pushBytes,
                  uint32_t width, uint32_t height) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.pipeline);
@@ -114,5 +115,6 @@ void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set, 
                       &p.callable,  // no callable shaders
                       width, height, 1);  // one invocation per pixel
 }
+// [end]
 
 }  // namespace rg

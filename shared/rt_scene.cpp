@@ -99,8 +99,10 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         {RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
         {RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
     });
+    // [region tlas_descriptor]
     VkDescriptorSet set = rt.descriptors.set;
     writeAccelerationStructure(gpu, set, RT_BINDING_TLAS, rt.tlas.as.handle);
+    // [end]
     writeStorageImage(gpu, set, RT_BINDING_TARGET, target.view);
     writeBuffer(gpu, set, RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rt.camera);
     writeBuffer(gpu, set, RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.objects);

@@ -3,7 +3,11 @@
 // its own formula, not 1 - R), Schlick equals the exact value at normal
 // incidence and at grazing, total internal reflection beyond the critical
 // angle. Also prints Schlick's error over the angle (chapter 09's plot data).
+// And where total internal reflection can happen in a sphere: never for light
+// that entered it from outside, always possible for light starting inside.
 #include <gtest/gtest.h>
+
+#include "reference.h"
 
 #include <cmath>
 #include <cstdio>
@@ -13,6 +17,9 @@ namespace shader {
 using namespace glm;
 using std::sqrt;
 #include "fresnel.glsl"
+#define RG_OUT(T) T&
+#include "sphere_intersect.glsl"
+#undef RG_OUT
 }  // namespace shader
 
 namespace {
@@ -55,6 +62,66 @@ TEST(Fresnel, TotalInternalReflectionBeyondTheCriticalAngle) {
         EXPECT_EQ(shader::fresnel(mode, 0.08f, float(std::cos(critical + 0.01)), float(kGlass), 1.0f), 1.0f);
         EXPECT_LT(shader::fresnel(mode, 0.08f, float(std::cos(critical - 0.05)), float(kGlass), 1.0f), 1.0f);
     }
+}
+
+// Follows light inside a unit glass sphere from (origin, direction), a point
+// on or in it: `bounces` internal reflections. Returns how many of the
+// surface hits on the way met total internal reflection (reference code, double).
+int internalReflections(glm::dvec3 origin, glm::dvec3 direction, double ior, int bounces) {
+    int tir = 0;
+    for (int i = 0; i < bounces; ++i) {
+        double t0, t1;
+        EXPECT_TRUE(rg::referenceUnitSphere(origin, direction, t0, t1));
+        glm::dvec3 p = origin + t1 * direction;  // inside: the far root is the exit
+        glm::dvec3 n = -glm::normalize(p);       // facing the ray
+        double cosI = -glm::dot(n, direction);
+        if (rg::referenceFresnel(FRESNEL_EXACT, 0, cosI, ior, 1.0) == 1.0) ++tir;
+        origin = p;
+        direction = glm::reflect(direction, n);  // the Fresnel-reflected part stays inside
+    }
+    return tir;
+}
+
+// Chapter 10's claim: light refracted into a sphere meets the surface from
+// inside at its own refraction angle (the chord is symmetric), which is below
+// the critical angle, so it always can leave. A sphere's bright rim is
+// Fresnel reflection, not total internal reflection.
+TEST(Fresnel, NoTotalInternalReflectionForLightEnteringASphere) {
+    for (double ior : {1.1, 1.33, kGlass, 2.4}) {
+        for (double h : {0.0, 0.3, 0.6, 0.9, 0.99, 0.999999, 1 - 1e-12}) {  // impact parameter; 1 is tangent
+            glm::dvec3 origin(h, 0, 5), direction(0, 0, -1);
+            double t0, t1;
+            ASSERT_TRUE(rg::referenceUnitSphere(origin, direction, t0, t1));
+            glm::dvec3 p = origin + t0 * direction, n = glm::normalize(p);
+            double eta = 1 / ior, cosI = -glm::dot(n, direction);
+            double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+            glm::dvec3 inside = glm::normalize(eta * direction + (eta * cosI - cosT) * n);  // Snell
+            EXPECT_EQ(internalReflections(p, inside, ior, 6), 0) << "ior " << ior << ", h " << h;
+        }
+        // The same in float with the shaders' own intersection and Fresnel code,
+        // as far toward grazing as float resolves the entry angle.
+        for (float h : {0.0f, 0.5f, 0.9f, 0.99f, 0.999f}) {
+            glm::vec3 origin(h, 0, 5), direction(0, 0, -1);
+            glm::vec2 t;
+            ASSERT_TRUE(shader::intersectUnitSphere(origin, direction, t));
+            glm::vec3 p = origin + t.x * direction, n = glm::normalize(p);
+            glm::vec3 inside = glm::refract(direction, n, float(1 / ior));
+            ASSERT_TRUE(shader::intersectUnitSphere(p, inside, t));
+            glm::vec3 q = p + t.y * inside, m = -glm::normalize(q);
+            EXPECT_LT(shader::fresnelExact(-glm::dot(m, inside), float(ior), 1.0f), 1.0f) << "ior " << ior << ", h " << h;
+            EXPECT_NE(glm::refract(inside, m, float(ior)), glm::vec3(0)) << "ior " << ior << ", h " << h;
+        }
+    }
+}
+
+// Light that starts inside (a camera in glass, chapter 10's hard case) is
+// not bound by that symmetry: steep enough, it is totally reflected at every
+// hit, and stays trapped.
+TEST(Fresnel, TotalInternalReflectionForLightStartingInside) {
+    // From (0.9, 0, 0) straight up: the surface is met at sin = 0.9 > 1 / 1.517.
+    EXPECT_EQ(internalReflections({0.9, 0, 0}, {0, 1, 0}, kGlass, 6), 6);
+    // From the centre every ray meets the surface head-on: never.
+    EXPECT_EQ(internalReflections({0, 0, 0}, glm::normalize(glm::dvec3(1, 2, 3)), kGlass, 1), 0);
 }
 
 TEST(Fresnel, SchlickErrorOverTheAngle) {

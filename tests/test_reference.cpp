@@ -2,8 +2,9 @@
 // RG_THIS_EXE and RG_THIS_NAME): the chapter against the CPU double-precision
 // reference on its default scene and on every hard case under tests/scenes/
 // (scales 1e-3 and 1e5, a light on a surface, a grazing light, tangent rays,
-// overlapping spheres, a camera inside a sphere or inside glass, total
-// internal reflection, touching glass spheres, the depth limit), with
+// overlapping spheres, a camera inside a sphere or inside glass (where total
+// internal reflection happens), glass at grazing incidence, touching glass
+// spheres, the depth limit), with
 // validation on and no NaN anywhere; and its window under Xvfb.
 #include "harness.h"
 

@@ -41,6 +41,6 @@ page=docs/performance.md
     echo "![Chapter 11: RMSE against samples per hit and against GPU time, $slug](images/$(basename "$plot"))"
     echo
   done
-  [ -f docs/perf/notes.md ] && cat docs/perf/notes.md
+  [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
 } > "$page"
 echo "wrote $page"

@@ -254,14 +254,19 @@ int main(int argc, char** argv) {
         rg::FrameTimes times;
         for (int frame = 0; frame < std::max(1, opts.framesToRun()); ++frame) {
             auto cpuStart = std::chrono::steady_clock::now();
+            // [region submit]
             rg::submitOnce(gpu, [&](VkCommandBuffer cmd) {
+                // A new image's layout is UNDEFINED; a storage image must be
+                // GENERAL before the shader writes it. The barrier changes the
+                // layout and orders the previous frame's copy before the writes.
                 rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                                  VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
                 timer.begin(cmd, 0);
                 recordPattern(cmd, pipeline, descriptors, target);
                 timer.end(cmd, 0);
-            });
+            });  // records, submits, waits on a fence
+            // [end]
             times.gpuMs.push_back(timer.readMs(0));
             times.cpuMs.push_back(
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count());

@@ -64,6 +64,11 @@ int main(int argc, char** argv) {
                                          "RayGlass chapter 02: frames in flight, fences, semaphores, barriers",
                                          opts, extra))
         return *exit;
+    if (omitBarrier && opts.headless) {  // headless frames have no blit: the experiment would show nothing
+        std::fprintf(stderr, "02_synchronization: --omit-barrier needs a window; without a display run it as "
+                             "xvfb-run -a build/bin/02_synchronization --validation --omit-barrier --frames 3\n");
+        return 2;
+    }
     return rg::runChapter(opts, [&] {
         rg::App app;
         rg::initApp(app, opts, "RayGlass 02: synchronization");

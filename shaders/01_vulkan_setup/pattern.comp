@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "host_device.h"
 
+// [region shader]
 layout(local_size_x = PATTERN_GROUP_SIZE, local_size_y = PATTERN_GROUP_SIZE) in;
 layout(binding = PATTERN_BINDING_TARGET, rgba32f) uniform writeonly image2D target;
 layout(push_constant) uniform Push { PatternPush pc; };
@@ -16,3 +17,4 @@ void main() {
     bool odd = ((pixel.x / pc.checker + pixel.y / pc.checker) & 1u) == 1u;
     imageStore(target, ivec2(pixel), vec4(uv.x, uv.y, odd ? 0.75 : 0.25, 1.0));
 }
+// [end]

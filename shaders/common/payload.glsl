@@ -2,6 +2,7 @@
 // shading (bounces loop there; closest-hit shaders only describe the hit).
 #ifndef PAYLOAD_GLSL
 #define PAYLOAD_GLSL
+// [region payload]
 struct HitPayload {
     vec3 radiance;   // on a miss: the sky in the ray's direction
     float t;         // hit distance along the (unit) ray direction; < 0 on a miss
@@ -11,4 +12,5 @@ struct HitPayload {
     uint object;
     uint frontFace;  // 1: the ray hit the outside (front) of the surface
 };
+// [end]
 #endif

@@ -7,6 +7,7 @@
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 
+// [region closest_hit]
 void main() {
     payload.normal = normalize(vec3(0.0, 1.0, 0.0) * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
@@ -17,3 +18,4 @@ void main() {
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
 }
+// [end]

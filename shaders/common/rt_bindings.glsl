@@ -4,7 +4,9 @@
 #extension GL_EXT_ray_tracing : require
 #include "host_device.h"
 
+// [region tlas]
 layout(binding = RT_BINDING_TLAS) uniform accelerationStructureEXT tlas;
+// [end]
 layout(binding = RT_BINDING_CAMERA, std140) uniform CameraBlock { RtCamera camera; };
 layout(binding = RT_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
 layout(binding = RT_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };

@@ -6,9 +6,11 @@
 #include "payload.glsl"
 #include "sky.glsl"
 
+// [region miss]
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 
 void main() {
     payload.radiance = skyRadiance(gl_WorldRayDirectionEXT);
     payload.t = -1.0;
 }
+// [end]

@@ -5,6 +5,7 @@
 #include "rt_bindings.glsl"
 #include "payload.glsl"
 
+// [region closest_hit]
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec3 objectNormal;
 
@@ -19,3 +20,4 @@ void main() {
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
 }
+// [end]
