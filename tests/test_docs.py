@@ -79,6 +79,20 @@ class DocsCheck(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("never closed", r.stderr)
 
+    def test_footer_links_sources_and_neighbours(self):
+        for n, name in ((1, "01_a"), (2, "02_b"), (3, "03_c")):
+            (self.root / "chapters" / name).mkdir(parents=True)
+            (self.root / "chapters" / name / "main.cpp").write_text("int main() {}\n")
+            (self.root / "docs" / f"{name}.md").write_text(f"# {n:02d} · Title {n}\n")
+        self.page("# 02 · Title 2\n<!-- footer: 02_b -->\n<!-- end -->\n", "02_b.md")
+        self.assertEqual(docs(self.root, "--write").returncode, 0)
+        text = (self.root / "docs" / "02_b.md").read_text()
+        self.assertIn("[`chapters/02_b/main.cpp`](../chapters/02_b/main.cpp)", text)
+        self.assertIn("Previous: [01 · Title 1](01_a.md)", text)
+        self.assertIn("Next: [03 · Title 3](03_c.md)", text)
+        (self.root / "docs" / "03_c.md").write_text("# 03 · Renamed\n")
+        self.assertEqual(docs(self.root, "--check").returncode, 1)  # the next page's title changed
+
     def test_missing_region_is_an_error(self):
         self.page("<!-- snippet: a.rgen#nothere -->\n<!-- end -->\n")
         r = docs(self.root, "--check")

@@ -6,7 +6,10 @@ In a page, a block between
 holds the region `// [region REGION]` ... `// [end]` of PATH (a file of the
 repository), dedented, in a fenced block; and a block between
     <!-- diff: OLD NEW -->  ...  <!-- end -->
-holds the unified diff from file or folder OLD to NEW.
+holds the unified diff from file or folder OLD to NEW; and a block between
+    <!-- footer: NN_name -->  ...  <!-- end -->
+holds a chapter page's links: its sources (the chapter's main.cpp, its
+shader folder, its tests) and the previous and next chapters.
 
 Regions nest: each `// [end]` closes the innermost open region, and the
 markers of inner regions are left out of listings and diffs. A file whose
@@ -23,7 +26,8 @@ import sys
 import textwrap
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-BLOCK = re.compile(r"(<!-- (snippet|diff): ([^>]*?) -->\n)(.*?)(<!-- end -->)", re.S)
+BLOCK = re.compile(r"(<!-- (snippet|diff|footer): ([^>]*?) -->\n)(.*?)(<!-- end -->)", re.S)
+CHAPTER = re.compile(r"^(\d\d)_\w+$")
 OPEN = re.compile(r"^\s*(?://|#)\s*\[region ([\w.-]+)\]\s*$")
 CLOSE = re.compile(r"^\s*(?://|#)\s*\[end\]\s*$")
 LANG = {".cpp": "cpp", ".h": "cpp", ".glsl": "glsl", ".comp": "glsl", ".rgen": "glsl", ".rchit": "glsl",
@@ -93,7 +97,48 @@ def diff(root, old, new):
     return "```diff\n" + "\n".join(out) + "\n```\n"
 
 
+def title(page):
+    first = page.read_text().splitlines()[0]
+    return first.lstrip("# ").strip()
+
+
+def footer(root, chapter):
+    """Sources and previous/next links of a chapter page (docs/NN_name.md)."""
+    if not CHAPTER.match(chapter):
+        raise DocsError(f"footer: '{chapter}' is not a chapter name (NN_name)")
+    pages = sorted(p for p in (root / "docs").glob("[0-9][0-9]_*.md"))
+    names = [p.stem for p in pages]
+    if chapter not in names:
+        raise DocsError(f"footer: no page docs/{chapter}.md")
+    sources = [f"chapters/{chapter}/main.cpp"]
+    shader_dir = root / "shaders" / chapter
+    if shader_dir.is_dir():
+        sources += [f.relative_to(root).as_posix() for f in sorted(shader_dir.iterdir()) if f.is_file()]
+    nn = chapter[:2]
+    if int(nn) >= 4:
+        sources.append("shaders/common")  # the payload, hit, miss and shading code chapters share
+    if int(nn) >= 5:
+        sources.append("shared/rt_chapter.cpp")  # chapter 04's main() for the shading chapters
+    sources += [f.relative_to(root).as_posix() for f in sorted((root / "tests").glob(f"test_{nn}_*.cpp"))]
+    if int(nn) >= 5:
+        sources.append("tests/test_reference.cpp")
+    missing = [s for s in sources if not (root / s).exists()]
+    if missing:
+        raise DocsError(f"footer {chapter}: missing {', '.join(missing)}")
+    links = " · ".join(f"[`{s}`](../{s})" for s in sources)
+    i = names.index(chapter)
+    nav = []
+    if i > 0:
+        nav.append(f"Previous: [{title(pages[i - 1])}]({pages[i - 1].name})")
+    nav.append("[Contents](index.md)")
+    if i + 1 < len(pages):
+        nav.append(f"Next: [{title(pages[i + 1])}]({pages[i + 1].name})")
+    return f"\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
+
+
 def render(root, kind, arg):
+    if kind == "footer":
+        return footer(root, arg)
     if kind == "snippet":
         path, name = arg.split("#")
         return region(root, path, name)
