@@ -267,7 +267,7 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     glm::dvec3 t1 = glm::normalize(glm::cross(helper, mirror)), t2 = glm::cross(mirror, t1);
     double cosMax = std::cos(m.roughness * kPi / 2);
     int side = std::max(1, int(std::lround(std::sqrt(double(settings.samples)))));
-    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x));
+    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x) ^ (settings.seed * 0xD1B54A32D192ED03ull));
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     glm::dvec3 from = secondaryOrigin(p, n), sum(0), sumSq(0);
     for (int j = 0; j < side; ++j)

@@ -18,6 +18,7 @@ struct ReferenceSettings {
     int maxDepth = 1;
     int fresnelMode = 0;
     int samples = 1024;  // chapter 11: stratified samples per rough hit (a square number)
+    uint64_t seed = 0;   // chapter 11: another seed gives an independent estimate (to measure its error)
 };
 
 struct ReferenceHit {

@@ -50,12 +50,12 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                                shaders);
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         uint32_t firstFrame = 0;  // of the current accumulation
-        const char* patterns[] = {"uniform", "stratified", "hammersley"};
+        const char* patterns[] = {"uniform", "stratified", "hammersley", "sobol"};
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             if (app.window && settings.accumulate) {
                 // P: next sample pattern; up/down: twice or half the samples. Both restart the average.
                 for (int key : app.window->takeKeys()) {
-                    if (key == GLFW_KEY_P) settings.pattern = (settings.pattern + 1) % 3;
+                    if (key == GLFW_KEY_P) settings.pattern = (settings.pattern + 1) % 4;
                     else if (key == GLFW_KEY_UP) settings.samplesPerHit = std::min(1024, settings.samplesPerHit * 2);
                     else if (key == GLFW_KEY_DOWN) settings.samplesPerHit = std::max(1, settings.samplesPerHit / 2);
                     else continue;

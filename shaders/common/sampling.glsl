@@ -1,11 +1,12 @@
 // Sample points for rough reflections (chapter 11), deterministic: the same
 // pixel, frame and sample index always give the same point, so a run can be
-// repeated exactly.
+// repeated exactly. Plain GLSL that also compiles as C++ (tests/test_sampling.cpp).
 #ifndef SAMPLING_GLSL
 #define SAMPLING_GLSL
 #define PATTERN_UNIFORM 0u     // independent random points
 #define PATTERN_STRATIFIED 1u  // one jittered point per cell of a sqrt(N) x sqrt(N) grid
 #define PATTERN_HAMMERSLEY 2u  // low-discrepancy (i/N, radical inverse of i), rotated per pixel
+#define PATTERN_SOBOL 3u       // one Owen-scrambled Sobol sequence per pixel, continued across frames
 
 // PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
 uint pcgHash(uint v) {
@@ -17,9 +18,45 @@ float toUnit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }  // [0, 1)
 
 uint pixelSeed(uvec2 pixel, uint frame) { return pcgHash(pixel.x + pcgHash(pixel.y + pcgHash(frame))); }
 
+// [region sobol]
+// The 2D Sobol sequence is a (0,2)-sequence: every aligned block of 2^k
+// consecutive points, the first 2^k included, puts exactly one point in each
+// of the 2^k boxes of any 2^a x 2^(k-a) grid. Its first coordinate is the
+// radical inverse of i (the bits of i mirrored); the second multiplies the
+// bits of i by Pascal's triangle mod 2, whose columns v_k come from v ^= v >> 1.
+uint sobolSecond(uint i) {
+    uint v = 0x80000000u, y = 0u;
+    for (; i != 0u; i >>= 1u, v ^= v >> 1u)
+        if ((i & 1u) != 0u) y ^= v;
+    return y;
+}
+
+// Owen scrambling: flip each bit of x depending on a hash of the bits above
+// it, i.e. randomly swap the halves of every interval, nested. It keeps the
+// (0,2) property and decorrelates pixels. Laine-Karras hash with the
+// constants of Burley, "Practical Hash-based Owen Scrambling", JCGT 2020.
+uint owenScramble(uint x, uint seed) {
+    x = bitfieldReverse(x);  // the hash carries from low bits to high: mirror so the top bits lead
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return bitfieldReverse(x);
+}
+
+// Point `index` of the pixel's own scrambled sequence.
+vec2 sobolPoint(uint index, uint seed) {
+    uint x = owenScramble(bitfieldReverse(index), pcgHash(seed));
+    uint y = owenScramble(sobolSecond(index), pcgHash(seed + 1u));
+    return vec2(toUnit(x), toUnit(y));
+}
+// [end]
+
 // [region patterns]
-// Point i of n in [0,1)^2.
+// Point i of n in [0,1)^2. For Sobol, i is the index in the pixel's sequence.
 vec2 samplePoint(uint pattern, uint i, uint n, uint seed) {
+    if (pattern == PATTERN_SOBOL) return sobolPoint(i, seed);
     vec2 random = vec2(toUnit(pcgHash(seed + 2u * i)), toUnit(pcgHash(seed + 2u * i + 1u)));
     if (pattern == PATTERN_STRATIFIED) {
         uint s = uint(sqrt(float(n)) + 0.5);
