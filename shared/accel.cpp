@@ -222,7 +222,7 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene
         instances.push_back({
             .transform = toVkTransform(o.transform),
             .instanceCustomIndex = uint32_t(i),  // gl_InstanceCustomIndexEXT: the object
-            .mask = 0xFF,                        // every ray sees every instance
+            .mask = o.hidden ? 0x00u : 0xFFu,    // every ray sees every instance, but a hidden copy
             .instanceShaderBindingTableRecordOffset = mesh ? 2u : sphere ? 1u : 0u,  // hit group
             .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // quads are two-sided
             .accelerationStructureReference = mesh ? shapes.meshSphere.address

@@ -50,6 +50,7 @@ ReferenceHit ReferenceRenderer::trace(const glm::dvec3& origin, const glm::dvec3
     ReferenceHit best;
     for (uint32_t i = 0; i < scene_.objects.size(); ++i) {
         const Object& obj = scene_.objects[i];
+        if (obj.hidden) continue;  // a copy of an earlier object (scene.cpp's rule)
         const glm::dmat4& inv = worldToObject_[i];
         glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
         glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
@@ -201,7 +202,7 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, co
 
 glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
                                        const glm::dvec3& direction, int depth, const glm::dvec3& throughput) const {
-    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
+    ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);  // depth 0: a camera ray
     if (hit.t < 0) return sky(direction);
     bool front = glm::dot(hit.normal, direction) < 0;
     glm::dvec3 n = front ? hit.normal : -hit.normal;  // toward the ray's origin
@@ -244,7 +245,7 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     // Chapter 11: the first surface's mirror branch becomes the mean over a
     // cone of directions. Same split and cone as the GPU; the integral is
     // estimated with many stratified samples from this code's own generator.
-    ReferenceHit hit = trace(origin, direction, 0.0, 1e300);
+    ReferenceHit hit = trace(origin, direction, eyeTmin(), 1e300);
     if (hit.t < 0) return sky(direction);
     const Material& m = scene_.materials[scene_.objects[hit.object].material];
     bool front = glm::dot(hit.normal, direction) < 0;

@@ -55,6 +55,8 @@ public:
     glm::dvec3 secondaryOrigin(const glm::dvec3& p, const glm::dvec3& n) const;
     // True when nothing lies between `from` and the light (in double precision).
     bool lightVisible(const glm::dvec3& from, const glm::dvec3& light) const;
+    // Camera rays ignore hits closer than this to the eye (the GPU's eyeTmin).
+    double eyeTmin() const { return scene_.scale / 65536.0; }
 
 private:
     const Scene& scene_;

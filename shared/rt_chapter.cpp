@@ -24,7 +24,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     };
     if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
     return runChapter(opts, [&] {
-        Scene scene = loadScene(opts.scene.empty() ? defaultScenePath("default") : opts.scene);
+        Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath("default") : opts.scene));
         App app;
         initApp(app, opts, chapter.title);
         Image target = createImage2D(app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,

@@ -5,10 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <set>
 
 namespace rg {
@@ -87,6 +90,19 @@ glm::dmat4 readTransform(const Reader& r, const json& j, const std::string& key)
     }
     if (j.contains("scale")) m = glm::scale(m, r.vec3(j["scale"], key + ".scale", 1e-12, kHuge));
     return m;
+}
+
+// The scene's size when the file gives none: the largest distance of an
+// object's box from the origin. Secondary-ray offsets scale with it.
+double measuredScale(const Scene& s) {
+    double scale = 0;
+    for (const auto& o : s.objects) {
+        const glm::dmat4& m = o.transform;
+        double extent = glm::length(glm::dvec3(m[3])) + glm::length(glm::dvec3(m[0])) + glm::length(glm::dvec3(m[1])) +
+                        glm::length(glm::dvec3(m[2]));
+        scale = std::max(scale, extent);
+    }
+    return scale;
 }
 
 }  // namespace
@@ -214,20 +230,47 @@ Scene loadScene(const std::string& path) {
         if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
         s.objects.push_back(obj);
     }
-    // The scene's size: given, or the largest distance of an object's box
-    // from the origin. Secondary-ray offsets scale with it.
+    // [region coincident]
+    // Two objects with the same shape and transform meet every ray at the
+    // same distance; which one a GPU reports is up to its traversal order.
+    // The rule: the first listed is drawn, later copies are hidden (the GPU
+    // gives them instance mask 0, the reference skips them).
+    std::map<std::array<double, 17>, size_t> seen;
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+        Object& o = s.objects[i];
+        std::array<double, 17> key{double(o.type)};
+        for (int c = 0; c < 4; ++c)
+            for (int k = 0; k < 4; ++k) key[1 + 4 * c + k] = o.transform[c][k];
+        auto [first, isNew] = seen.emplace(key, i);
+        if (isNew) continue;
+        o.hidden = true;
+        std::fprintf(stderr, "%s: objects[%zu] coincides with objects[%zu]; only the first is drawn\n", path.c_str(), i,
+                     first->second);
+    }
+    // [end]
     if (j.contains("scale")) {
         s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);
+        s.scaleGiven = true;
     } else {
-        s.scale = 0;
-        for (const auto& o : s.objects) {
-            const glm::dmat4& m = o.transform;
-            double extent = glm::length(glm::dvec3(m[3])) + glm::length(glm::dvec3(m[0])) +
-                            glm::length(glm::dvec3(m[1])) + glm::length(glm::dvec3(m[2]));
-            s.scale = std::max(s.scale, extent);
-        }
+        s.scale = measuredScale(s);
     }
     return s;
 }
+
+// [region camera_space]
+Scene toCameraSpace(Scene s) {
+    glm::dvec3 eye = s.camera.position;  // every subtraction below is in double
+    for (Object& o : s.objects) {
+        o.transform[3] -= glm::dvec4(eye, 0);
+        o.center -= eye;
+    }
+    for (PointLight& l : s.lights) l.position -= eye;
+    s.camera.lookAt -= eye;
+    s.camera.position = glm::dvec3(0);
+    s.origin -= eye;
+    if (!s.scaleGiven) s.scale = measuredScale(s);  // the size as seen from the camera
+    return s;
+}
+// [end]
 
 }  // namespace rg

@@ -50,6 +50,7 @@ struct Object {
     uint32_t material = 0;
     bool moving = false;     // chapter 03 moves it every frame by its TLAS transform alone
     glm::dmat4 transform{1.0};  // object -> world
+    bool hidden = false;     // the same shape and transform as an earlier object: that one is drawn
     // As written in the file (the reference renderer intersects these directly):
     glm::dvec3 center{0};
     double radius = 1;       // spheres
@@ -65,12 +66,22 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Object> objects;
     double scale = 1.0;  // the scene's size (given, or from the objects): secondary-ray offsets scale with it
+    bool scaleGiven = false;  // "scale" was in the file (else it is measured from the objects)
+    glm::dvec3 origin{0};     // where this scene's origin lies in the file's coordinates (toCameraSpace)
 };
 
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
 // the file and the key for a missing file, bad JSON, an unknown key, a
 // missing value or one out of range.
 Scene loadScene(const std::string& path);
+
+// The rendering space of the ray tracing chapters (04 on), as PBRT-v4 does:
+// the whole scene translated, in double precision, so that the camera sits
+// at the origin. Floats are densest near 0, so what the camera sees close up
+// keeps the precision it would have at the world's origin, wherever the
+// scene is (a float's spacing is 0.008 at 1e5). Returns the moved scene;
+// `origin` says where it was.
+Scene toCameraSpace(Scene scene);
 
 // The chapter's default scene: bin/assets/scenes/<name>.json.
 std::string defaultScenePath(const std::string& name);

@@ -1,7 +1,12 @@
 // Chapter 04 against the CPU double-precision reference: at most 0.1% of the
 // pixels may differ by more than 1/255 in display value; every pixel traced
-// exactly one ray; no NaN; the sky's landmarks are where they belong.
+// exactly one ray; no NaN; the sky's landmarks are where they belong. The
+// same far from the world's origin (camera-relative rendering space), and
+// with the eye exactly on a sphere (the rule for hits at the eye).
 #include "harness.h"
+
+#include "output.h"
+#include "reference.h"
 
 namespace {
 
@@ -39,6 +44,31 @@ TEST(Chapter04, MatchesTheReference) {
     const uint8_t* floor = png.at(w / 2, h - 2);
     EXPECT_NEAR(floor[0], rgtest::display8(0.5), 2);
     EXPECT_NEAR(floor[1], rgtest::display8(1.0), 2);
+}
+
+// The default scene translated by (1e4, 0, -1e4) ... (1e6, 0, -1e6), and the
+// eye on the mirror sphere's top: against the reference like any scene.
+TEST(Chapter04, FarFromTheOriginAndEyeOnASurfaceMatchTheReference) {
+    for (const char* scene : {"far_1e4", "far_1e5", "far_1e6", "eye_on_sphere"})
+        rgtest::expectMatchesReference(RG_EXE_04, RG_SOURCE_DIR "/tests/scenes/" + std::string(scene) + ".json",
+                                       std::string("04_") + scene);
+}
+
+// Independently of the reference: moving the whole scene by 1e6 must not
+// change the picture (it did, in 10 % of the pixels, in world-space floats).
+TEST(Chapter04, TranslationDoesNotChangeThePicture) {
+    std::string dir = rgtest::outputDir("04_translation");
+    for (std::string scene : {"default", "far"}) {
+        std::string path = scene == "far" ? RG_SOURCE_DIR "/tests/scenes/far_1e6.json" : "";
+        std::vector<std::string> args = {"--headless", "--width", "240", "--height", "136", "--frames", "1",
+                                         "--output", dir + "/" + scene + ".png"};
+        if (!path.empty()) args.insert(args.end(), {"--scene", path});
+        rgtest::RunResult r = rgtest::run(RG_EXE_04, args);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    rg::ImageError e = rg::compareImages(rg::readPfm(dir + "/far.pfm"), rg::readPfm(dir + "/default.pfm"), nullptr);
+    EXPECT_LE(e.fracOver1_255, 0.001);
+    EXPECT_LT(e.rmse, 1e-4);
 }
 
 TEST(Chapter04Windowed, TracesAndPresentsUnderXvfb) {

@@ -2,6 +2,8 @@
 // for every chapter that reads scenes.
 #include "harness.h"
 
+#include "scene.h"
+
 #include <fstream>
 
 namespace {
@@ -55,6 +57,33 @@ TEST_P(Scenes, AMinimalSceneRuns) {
                                                    "--width", "32", "--height", "32", "--frames", "1", "--output",
                                                    dir + "/good.png"});
     EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+// The rule for coincident objects: the first listed is drawn, later copies
+// are hidden (and the loader says so).
+TEST(SceneRules, CoincidentObjectsKeepTheFirst) {
+    rg::Scene s = rg::loadScene(RG_SOURCE_DIR "/tests/scenes/coincident_spheres.json");
+    ASSERT_EQ(s.objects.size(), 6u);
+    EXPECT_TRUE(s.objects[5].hidden);
+    for (size_t i = 0; i < 5; ++i) EXPECT_FALSE(s.objects[i].hidden) << i;
+}
+
+// Camera space: the eye at the origin, everything moved by the same vector
+// in double, the scene's size measured from the camera.
+TEST(SceneRules, CameraSpaceMovesEverythingByTheEye) {
+    rg::Scene world = rg::loadScene(RG_SOURCE_DIR "/tests/scenes/far_1e6.json");
+    rg::Scene near = rg::loadScene(RG_SOURCE_DIR "/assets/scenes/default.json");
+    rg::Scene moved = rg::toCameraSpace(world);
+    EXPECT_EQ(moved.camera.position, glm::dvec3(0));
+    EXPECT_EQ(moved.origin, -world.camera.position);
+    EXPECT_GT(world.scale, 1e6);
+    EXPECT_LT(moved.scale, 50.0);  // the floor seen from the camera, not from 1e6 away
+    rg::Scene nearMoved = rg::toCameraSpace(near);
+    ASSERT_EQ(moved.objects.size(), nearMoved.objects.size());
+    for (size_t i = 0; i < moved.objects.size(); ++i)  // far and near scenes agree once moved
+        EXPECT_NEAR(glm::length(moved.objects[i].center - nearMoved.objects[i].center), 0.0, 1e-9) << i;
+    EXPECT_NEAR(glm::length(moved.lights[0].position - nearMoved.lights[0].position), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(moved.camera.lookAt - nearMoved.camera.lookAt), 0.0, 1e-9);
 }
 
 }  // namespace

@@ -19,7 +19,10 @@ int main(int argc, char** argv) {
                                          "RayGlass chapter 04: ray generation, miss, the SBT", opts, extra))
         return *exit;
     return rg::runChapter(opts, [&] {
-        rg::Scene scene = rg::loadScene(opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene);
+        // Moved so the camera is at the origin, in double, before any float is
+        // made: precision anywhere in the world (chapter 06's page).
+        rg::Scene scene = rg::toCameraSpace(
+            rg::loadScene(opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene));
         rg::App app;
         rg::initApp(app, opts, "RayGlass 04: ray generation and miss");
         rg::Image target = rg::createImage2D(app.gpu, app.deletion, opts.width, opts.height,

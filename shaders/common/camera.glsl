@@ -1,6 +1,15 @@
 // The camera ray of thesis 2.2.2, through the pixel's centre.
 #ifndef CAMERA_GLSL
 #define CAMERA_GLSL
+// [region eye_tmin]
+// Camera rays ignore hits closer to the eye than this, so an eye placed
+// exactly on a surface sees what a ray leaving that surface would: the
+// outside above its tangent plane, the inside below. It is offsetRay's
+// distance at the origin, where the eye is in camera space (the rule is in
+// docs/scene-format.md; the CPU reference follows it).
+float eyeTmin() { return camera.scale.x / 65536.0; }
+// [end]
+
 // [region camera_ray]
 void cameraRay(uvec2 pixel, uvec2 size, out vec3 origin, out vec3 direction) {
     vec2 pixelCenter = vec2(pixel) + 0.5;                     // not the corner

@@ -48,7 +48,7 @@ vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, inout u
     vec3 radiance = vec3(0.0);
     while (top > 0) {
         Branch b = stack[--top];
-        traceClosest(b.origin, 0.0, b.direction);
+        traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction);  // depth 0: a camera ray
         ++rays;
         if (payload.t < 0.0) {
             radiance += b.throughput * payload.radiance;
