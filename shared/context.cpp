@@ -83,7 +83,17 @@ VkInstance createInstance(const std::string& appName, bool validation,
         .ppEnabledExtensionNames = extensions.data(),
     };
     VkInstance instance = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateInstance(&info, nullptr, &instance));
+    VkResult created = vkCreateInstance(&info, nullptr, &instance);
+    // The two failures a user meets (no driver, no validation layer) are not
+    // bugs: say what to install instead of where in the code it failed.
+    if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
+        throw std::runtime_error(
+            "no Vulkan driver found. Install one: tools/setup.sh does (on Debian 12, Mesa's lavapipe, "
+            "mesa-vulkan-drivers >= 24.1 from bookworm-backports), or your GPU's driver; if VK_ICD_FILENAMES or "
+            "VK_DRIVER_FILES is set, it must name an existing driver .json");
+    if (created == VK_ERROR_LAYER_NOT_PRESENT)
+        throw std::runtime_error("--validation needs the Khronos validation layer (Debian: vulkan-validationlayers)");
+    VK_CHECK(created);
     deletion.push([instance] { vkDestroyInstance(instance, nullptr); });
     loadInstanceFunctions(instance);
 

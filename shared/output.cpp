@@ -6,6 +6,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +21,19 @@ void makeParent(const std::string& path) {
     std::filesystem::path parent = std::filesystem::path(path).parent_path();
     std::error_code ignored;  // a failure shows as "cannot write" below
     if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+}
+
+// Every output goes through here: each step is checked, the close too, since
+// a full disk often shows only when buffered bytes are flushed.
+void writeFile(const std::string& path, const void* bytes, size_t size) {
+    makeParent(path);
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    if (!file) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    bool ok = std::fwrite(bytes, 1, size, file) == size;
+    ok = std::fflush(file) == 0 && ok;
+    int error = errno;
+    ok = std::fclose(file) == 0 && ok;
+    if (!ok) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error ? error : errno));
 }
 }  // namespace
 
@@ -60,22 +74,26 @@ FloatImage readImage(const Gpu& gpu, const Image& image, VkPipelineStageFlags la
 }
 
 void writePng(const std::string& path, const FloatImage& image) {
-    makeParent(path);
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * 3);
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = toDisplay8(image.rgba[4 * i + c]);
-    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 3, rgb.data(), int(image.width) * 3))
-        throw std::runtime_error("cannot write " + path);
+    std::string png;  // encoded in memory: stb's own file writer ignores write errors
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, int(image.width), int(image.height), 3, rgb.data(),
+                                int(image.width) * 3))
+        throw std::runtime_error("cannot encode " + path);
+    writeFile(path, png.data(), png.size());
 }
 
 void writePfm(const std::string& path, const FloatImage& image) {
-    makeParent(path);
-    std::ofstream file(path, std::ios::binary);
-    if (!file) throw std::runtime_error("cannot write " + path);
-    file << "PF\n" << image.width << " " << image.height << "\n-1.0\n";  // negative: little endian
+    std::string pfm = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) +
+                      "\n-1.0\n";  // negative: little endian
     for (uint32_t y = image.height; y-- > 0;)  // PFM stores the bottom row first
         for (uint32_t x = 0; x < image.width; ++x)
-            file.write(reinterpret_cast<const char*>(&image.rgba[4 * (size_t(y) * image.width + x)]), 12);
+            pfm.append(reinterpret_cast<const char*>(&image.rgba[4 * (size_t(y) * image.width + x)]), 12);
+    writeFile(path, pfm.data(), pfm.size());
 }
 
 FloatImage readPfm(const std::string& path) {
@@ -127,10 +145,8 @@ nlohmann::json makeReport(const Options& opts, const Gpu& gpu, const FrameTimes&
 }
 
 void writeReport(const std::string& path, const nlohmann::json& report) {
-    makeParent(path);
-    std::ofstream file(path);
-    if (!file) throw std::runtime_error("cannot write " + path);
-    file << report.dump(2) << "\n";
+    std::string text = report.dump(2) + "\n";
+    writeFile(path, text.data(), text.size());
 }
 
 }  // namespace rg

@@ -1,10 +1,13 @@
 #include "reference.h"
 
 #include "display.h"
+#include "progress.h"
 #include "rt_scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <cstdint>
 #include <cmath>
 #include <random>
@@ -293,9 +296,10 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
     FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> workers;
+    std::atomic<uint32_t> rowsDone{0};
     for (unsigned t = 0; t < threads; ++t)
         workers.emplace_back([&, t] {
-            for (uint32_t y = t; y < height; y += threads)
+            for (uint32_t y = t; y < height; y += threads, ++rowsDone)
                 for (uint32_t x = 0; x < width; ++x) {
                     double stdError = 0;
                     glm::dvec3 c = shade(settings, x, y, width, height, &stdError);
@@ -304,6 +308,11 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
                     if (settings.stage == ReferenceStage::Rough) p[3] = float(stdError);
                 }
         });
+    Progress progress("CPU reference", height);  // on a terminal only
+    while (rowsDone.load() < height) {
+        progress.update(rowsDone.load());
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
     for (auto& w : workers) w.join();
     return image;
 }

@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include "app.h"
+#include "progress.h"
 #include "resources.h"
 
 #include <nlohmann/json.hpp>
@@ -113,9 +114,16 @@ std::string defaultScenePath(const std::string& name) {
 
 Scene loadScene(const std::string& path) {
     Reader r(path);
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) throw InputError(path + ": is a folder, not a scene file");
     std::ifstream file(path);
     if (!file) throw InputError(path + ": cannot open the scene file");
-    json j = json::parse(file, nullptr, false);
+    json j;
+    try {
+        j = json::parse(file, nullptr, false);
+    } catch (const std::exception& e) {  // a read error (not a syntax error, which gives `discarded`)
+        throw InputError(path + ": cannot read the scene file (" + e.what() + ")");
+    }
     if (j.is_discarded()) throw InputError(path + ": not valid JSON");
     r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
 
@@ -194,7 +202,9 @@ Scene loadScene(const std::string& path) {
 
     if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
         r.fail("objects", "must be an array with at least one object");
+    Progress progress(path, j["objects"].size());  // big scenes, on a terminal only
     for (size_t i = 0; i < j["objects"].size(); ++i) {
+        if (i % 4096 == 0) progress.update(i);
         const json& o = j["objects"][i];
         std::string key = "objects[" + std::to_string(i) + "]";
         if (!o.is_object() || !o.contains("type")) r.fail(key + ".type", "missing (sphere or quad)");

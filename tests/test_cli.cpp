@@ -47,6 +47,30 @@ TEST_P(CommandLine, MissingDeviceIndexIsAClearError) {
     EXPECT_NE(r.output.find("--device 7"), std::string::npos) << r.output;
 }
 
+// A run whose output cannot be written fails with one line naming the file
+// (a full disk: /dev/full takes the open, refuses the bytes).
+TEST_P(CommandLine, UnwritableOutputIsAnErrorNamingTheFile) {
+    std::string dir = rgtest::outputDir("cli_full_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
+    rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--width", "16", "--height", "16", "--frames", "1",
+                                                   "--output", dir + "/x.png", "--report", "/dev/full"});
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("cannot write /dev/full: No space left on device"), std::string::npos) << r.output;
+    size_t errors = 0;
+    for (size_t at = r.output.find("error:"); at != std::string::npos; at = r.output.find("error:", at + 1)) ++errors;
+    EXPECT_EQ(errors, 1u) << r.output;
+}
+
+// No Vulkan driver at all: say what to install, not where in the code it failed.
+TEST_P(CommandLine, NoDriverSaysWhatToInstall) {
+    rgtest::RunResult r = rgtest::run("env", {"VK_ICD_FILENAMES=/nonexistent.json", "VK_DRIVER_FILES=/nonexistent.json",
+                                              GetParam(), "--headless", "--frames", "1", "--output",
+                                              rgtest::outputDir("cli_nodriver") + "/x.png"});
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("no Vulkan driver found"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("tools/setup.sh"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("context.cpp"), std::string::npos) << r.output;
+}
+
 }  // namespace
 
 INSTANTIATE_TEST_SUITE_P(Chapters, CommandLine, ::testing::ValuesIn(std::vector<std::string>{RG_CHAPTER_EXES}));

@@ -50,6 +50,13 @@ TEST_P(Scenes, BadFilesExitWithCode2NamingFileAndKey) {
     EXPECT_NE(missing.output.find("cannot open"), std::string::npos) << missing.output;
 }
 
+TEST_P(Scenes, AFolderIsNotASceneFile) {
+    std::string dir = rgtest::outputDir("scenes_folder");
+    rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--scene", dir, "--output", dir + "/x.png"});
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("is a folder, not a scene file"), std::string::npos) << r.output;
+}
+
 TEST_P(Scenes, AMinimalSceneRuns) {
     std::string dir = rgtest::outputDir("scenes_ok_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
     std::ofstream(dir + "/good.json") << kGood;
