@@ -118,13 +118,27 @@ Scene loadScene(const std::string& path) {
     if (std::filesystem::is_directory(path, error)) throw InputError(path + ": is a folder, not a scene file");
     std::ifstream file(path);
     if (!file) throw InputError(path + ": cannot open the scene file");
+    // JSON allows a key twice in one object and keeps the last; in a scene
+    // file that is a mistake (two "radius" keys), so the parser's callback
+    // refuses it.
+    std::vector<std::set<std::string>> keysOfOpenObjects;
+    std::string duplicate;
+    auto strict = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) keysOfOpenObjects.emplace_back();
+        if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) keysOfOpenObjects.pop_back();
+        if (event == json::parse_event_t::key && !keysOfOpenObjects.empty() &&
+            !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second && duplicate.empty())
+            duplicate = parsed.get<std::string>();
+        return true;
+    };
     json j;
     try {
-        j = json::parse(file, nullptr, false);
+        j = json::parse(file, strict, false);
     } catch (const std::exception& e) {  // a read error (not a syntax error, which gives `discarded`)
         throw InputError(path + ": cannot read the scene file (" + e.what() + ")");
     }
     if (j.is_discarded()) throw InputError(path + ": not valid JSON");
+    if (!duplicate.empty()) throw InputError(path + ": key \"" + duplicate + "\" appears twice in one object");
     r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
 
     Scene s;
@@ -246,6 +260,7 @@ Scene loadScene(const std::string& path) {
     // The rule: the first listed is drawn, later copies are hidden (the GPU
     // gives them instance mask 0, the reference skips them).
     std::map<std::array<double, 17>, size_t> seen;
+    size_t copies = 0;
     for (size_t i = 0; i < s.objects.size(); ++i) {
         Object& o = s.objects[i];
         std::array<double, 17> key{double(o.type)};
@@ -254,9 +269,11 @@ Scene loadScene(const std::string& path) {
         auto [first, isNew] = seen.emplace(key, i);
         if (isNew) continue;
         o.hidden = true;
-        std::fprintf(stderr, "%s: objects[%zu] coincides with objects[%zu]; only the first is drawn\n", path.c_str(), i,
-                     first->second);
+        if (++copies <= 3)
+            std::fprintf(stderr, "%s: objects[%zu] coincides with objects[%zu]; only the first is drawn\n",
+                         path.c_str(), i, first->second);
     }
+    if (copies > 3) std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n", path.c_str(), copies - 3);
     // [end]
     if (j.contains("scale")) {
         s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);

@@ -28,6 +28,7 @@ std::vector<BadScene> badScenes() {
         {"unknown_shape", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "cube", "material": "m"}]})", "objects[0].type"},
         {"parallel_quad", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "quad", "u": [1,0,0], "v": [2,0,0], "material": "m"}]})", "objects[0].v"},
         {"no_objects", R"({"camera": {}, "materials": {"m": {}}, "objects": []})", "objects"},
+        {"duplicated_key", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "radius": 2, "material": "m"}]})", "radius\" appears twice"},
         {"missing_sky_image", R"({"camera": {}, "sky": {"image": "nope.png"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "sky.image"},
     };
 }
