@@ -4,6 +4,7 @@
 #include "mesh.h"
 #include "vk_check.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -212,10 +213,47 @@ VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
 }
 // [end]
 
+// [region morton]
+// Interleaves the low 10 bits of x, y, z: bit k of x goes to bit 3k.
+uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z) {
+    auto spread = [](uint32_t v) {
+        v &= 0x3FFu;
+        v = (v | (v << 16)) & 0x030000FFu;
+        v = (v | (v << 8)) & 0x0300F00Fu;
+        v = (v | (v << 4)) & 0x030C30C3u;
+        v = (v | (v << 2)) & 0x09249249u;
+        return v;
+    };
+    return spread(x) | (spread(y) << 1) | (spread(z) << 2);
+}
+
+std::vector<uint32_t> mortonOrder(const Scene& scene) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const Object& o : scene.objects) lo = glm::min(lo, glm::dvec3(o.transform[3])), hi = glm::max(hi, glm::dvec3(o.transform[3]));
+    glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(1e-300));
+    std::vector<std::pair<uint32_t, uint32_t>> keyed;  // (code, object)
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        glm::dvec3 c = (glm::dvec3(scene.objects[i].transform[3]) - lo) / extent * 1023.0;  // the box centre, 0..1023
+        keyed.push_back({mortonCode(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z)), i});
+    }
+    std::sort(keyed.begin(), keyed.end());  // ties keep file order: (code, index) pairs
+    std::vector<uint32_t> order;
+    for (const auto& k : keyed) order.push_back(k.second);
+    return order;
+}
+// [end]
+
+std::vector<uint32_t> fileOrder(const Scene& scene) {
+    std::vector<uint32_t> order(scene.objects.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    return order;
+}
+
 // [region make_instances]
-std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes) {
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
+                                                              const std::vector<uint32_t>& order) {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
-    for (size_t i = 0; i < scene.objects.size(); ++i) {
+    for (uint32_t i : order) {
         const Object& o = scene.objects[i];
         bool sphere = o.type == ShapeType::Sphere;
         bool mesh = sphere && shapes.meshSphere.handle != VK_NULL_HANDLE;  // --sphere-mesh

@@ -38,10 +38,21 @@ struct UnitShapes {
 // which makeInstances then uses for every sphere instead of the analytic one.
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0);
 
-// TLAS instances: one per object, in object order (instance index = object
-// index), each pointing at the quad or sphere BLAS with the object's transform.
-// Hit group offset: 0 for triangles, 1 for spheres (chapter 04's SBT).
-std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes);
+// The order in which objects become TLAS instances (thesis 2.2.1). A builder
+// may take the order it is given as the tree: lavapipe's splits the list at
+// its middle without sorting, so objects far apart in the list must be far
+// apart in space. Morton order (default) sorts the objects by the Z-order
+// code of their box centres; --file-order keeps the scene file's order.
+std::vector<uint32_t> mortonOrder(const Scene& scene);
+uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z);  // 10 bits each, interleaved: x in bit 0, 3, 6, ...
+std::vector<uint32_t> fileOrder(const Scene& scene);  // 0, 1, 2, ...
+
+// TLAS instances: instance k is object order[k] (its custom index is the
+// object's index, which the shaders use), pointing at the quad or sphere
+// BLAS with the object's transform. Hit group offset: 0 for triangles, 1 for
+// spheres, 2 for the sphere mesh (chapter 04's SBT).
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
+                                                              const std::vector<uint32_t>& order);
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m);
 
 struct Tlas {

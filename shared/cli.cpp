@@ -14,6 +14,8 @@ bool displayAvailable() {
 
 void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
     app.add_option("--scene", opts.scene, "Scene JSON file (default: the chapter's own scene)");
+    app.add_flag("--file-order", opts.fileOrder,
+                 "Build the TLAS from the objects in the scene file's order instead of Morton order");
     if (reference)
         app.add_flag("--reference", opts.reference,
                      "Also render the CPU double-precision reference and report the error");

@@ -23,6 +23,7 @@ struct Options {
     // From chapter 03 on:
     std::string scene;            // scene JSON (default: the chapter's own)
     bool reference = false;       // also render the CPU double-precision reference
+    bool fileOrder = false;       // TLAS instances in the scene file's order, not Morton order
 
     int framesToRun() const { return frames > 0 ? frames : (headless ? 10 : 0); }
 };

@@ -48,12 +48,12 @@ glm::vec4 v4(const glm::dvec3& v, double w = 0) { return glm::vec4(glm::dvec4(v,
 }  // namespace
 
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    int sphereMeshLevel) {
+                    const std::vector<uint32_t>& order, int sphereMeshLevel) {
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
     rt.shapes = buildUnitShapes(gpu, deletion, sphereMeshLevel);
-    rt.instances = makeInstances(scene, rt.shapes);
+    rt.instances = makeInstances(scene, rt.shapes, order);
     rt.tlas = buildTlas(gpu, deletion, rt.instances);
 
     SkyTexels sky = loadSky(scene);

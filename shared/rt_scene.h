@@ -33,7 +33,7 @@ struct RtScene {
 
 // Uploads everything and writes the descriptor set for `target`.
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    int sphereMeshLevel = 0);
+                    const std::vector<uint32_t>& order, int sphereMeshLevel = 0);
 
 // Sum of the per-pixel ray counts of the last frame (host readback).
 uint64_t countRays(const Gpu& gpu, const RtScene& scene);

@@ -64,7 +64,7 @@ TEST_P(CommandLine, UnwritableOutputIsAnErrorNamingTheFile) {
 TEST_P(CommandLine, NoDriverSaysWhatToInstall) {
     rgtest::RunResult r = rgtest::run("env", {"VK_ICD_FILENAMES=/nonexistent.json", "VK_DRIVER_FILES=/nonexistent.json",
                                               GetParam(), "--headless", "--frames", "1", "--output",
-                                              rgtest::outputDir("cli_nodriver") + "/x.png"});
+                                              rgtest::outputDir("cli_nodriver_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000)) + "/x.png"});
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("no Vulkan driver found"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("tools/setup.sh"), std::string::npos) << r.output;

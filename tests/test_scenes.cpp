@@ -52,7 +52,8 @@ TEST_P(Scenes, BadFilesExitWithCode2NamingFileAndKey) {
 }
 
 TEST_P(Scenes, AFolderIsNotASceneFile) {
-    std::string dir = rgtest::outputDir("scenes_folder");
+    // One folder per chapter: outputDir empties it, and the chapters run in parallel.
+    std::string dir = rgtest::outputDir("scenes_folder_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
     rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--scene", dir, "--output", dir + "/x.png"});
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("is a folder, not a scene file"), std::string::npos) << r.output;

@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
 
         // [region build]
         rg::UnitShapes shapes = rg::buildUnitShapes(gpu, app.deletion);                // two BLASes
-        std::vector<VkAccelerationStructureInstanceKHR> instances = rg::makeInstances(scene, shapes);
+        // Instance k is object order[k]: neighbours in space next to each other.
+        std::vector<uint32_t> order = opts.fileOrder ? rg::fileOrder(scene) : rg::mortonOrder(scene);
+        std::vector<VkAccelerationStructureInstanceKHR> instances = rg::makeInstances(scene, shapes, order);
         rg::Tlas tlas = rg::buildTlas(gpu, app.deletion, instances);                    // one TLAS
         // [end]
         printStatistics(shapes, tlas);
@@ -103,9 +105,9 @@ int main(int argc, char** argv) {
         uint32_t lastFrame = 0;
         rg::FrameLoop loop(gpu, app.window.get(), target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, app.deletion);
         rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
-            for (size_t i = 0; i < scene.objects.size(); ++i)  // new transforms for moving objects only
-                if (scene.objects[i].moving)
-                    instances[i].transform = rg::toVkTransform(movedTransform(scene.objects[i], frame));
+            for (size_t k = 0; k < order.size(); ++k)  // new transforms for moving objects only
+                if (scene.objects[order[k]].moving)
+                    instances[k].transform = rg::toVkTransform(movedTransform(scene.objects[order[k]], frame));
             rg::recordTlasUpdate(cmd, tlas, instances, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);  // refit
 
             rg::gpu::FootprintPush push{bounds, uint32_t(opts.width), uint32_t(opts.height), tlas.count, 0};
