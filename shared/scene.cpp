@@ -6,13 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
-#include <map>
+#include <memory>
 #include <set>
 
 namespace rg {
@@ -20,6 +21,46 @@ namespace rg {
 namespace {
 
 using nlohmann::json;
+
+// nlohmann's own DOM builder, plus a check that no object has a key twice.
+// (Its parser callback could do this too, but makes a 1e6-object file take
+// minutes instead of seconds.) Keys are kept per open object, in a list
+// reused across objects; a list that grows long moves into a set.
+class StrictJson : public nlohmann::detail::json_sax_dom_parser<json> {
+public:
+    explicit StrictJson(json& j) : json_sax_dom_parser(j, false) {}
+    std::string duplicate;  // the first key found twice
+
+    bool start_object(std::size_t n) {
+        if (++depth_ > levels_.size()) levels_.emplace_back();
+        levels_[depth_ - 1].keys.clear();
+        levels_[depth_ - 1].many.reset();
+        return json_sax_dom_parser::start_object(n);
+    }
+    bool end_object() {
+        --depth_;
+        return json_sax_dom_parser::end_object();
+    }
+    bool key(std::string& k) {
+        Level& level = levels_[depth_ - 1];
+        bool seen = level.many ? !level.many->insert(k).second
+                               : std::find(level.keys.begin(), level.keys.end(), k) != level.keys.end();
+        if (!level.many) {
+            level.keys.push_back(k);
+            if (level.keys.size() > 32) level.many = std::make_unique<std::set<std::string>>(level.keys.begin(), level.keys.end());
+        }
+        if (seen && duplicate.empty()) duplicate = k;
+        return json_sax_dom_parser::key(k);
+    }
+
+private:
+    struct Level {
+        std::vector<std::string> keys;
+        std::unique_ptr<std::set<std::string>> many;
+    };
+    std::vector<Level> levels_;
+    size_t depth_ = 0;
+};
 
 // Reads one JSON value and names where it came from when it is wrong.
 class Reader {
@@ -119,26 +160,17 @@ Scene loadScene(const std::string& path) {
     std::ifstream file(path);
     if (!file) throw InputError(path + ": cannot open the scene file");
     // JSON allows a key twice in one object and keeps the last; in a scene
-    // file that is a mistake (two "radius" keys), so the parser's callback
-    // refuses it.
-    std::vector<std::set<std::string>> keysOfOpenObjects;
-    std::string duplicate;
-    auto strict = [&](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start) keysOfOpenObjects.emplace_back();
-        if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) keysOfOpenObjects.pop_back();
-        if (event == json::parse_event_t::key && !keysOfOpenObjects.empty() &&
-            !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second && duplicate.empty())
-            duplicate = parsed.get<std::string>();
-        return true;
-    };
+    // file that is a mistake (two "radius" keys), so the parser refuses it.
     json j;
+    StrictJson strict(j);
     try {
-        j = json::parse(file, strict, false);
-    } catch (const std::exception& e) {  // a read error (not a syntax error, which gives `discarded`)
+        json::sax_parse(file, &strict);
+    } catch (const std::exception& e) {  // a read error (syntax errors are reported below)
         throw InputError(path + ": cannot read the scene file (" + e.what() + ")");
     }
-    if (j.is_discarded()) throw InputError(path + ": not valid JSON");
-    if (!duplicate.empty()) throw InputError(path + ": key \"" + duplicate + "\" appears twice in one object");
+    if (strict.is_errored() || j.is_discarded()) throw InputError(path + ": not valid JSON");
+    if (!strict.duplicate.empty())
+        throw InputError(path + ": key \"" + strict.duplicate + "\" appears twice in one object");
     r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
 
     Scene s;
@@ -259,19 +291,28 @@ Scene loadScene(const std::string& path) {
     // same distance; which one a GPU reports is up to its traversal order.
     // The rule: the first listed is drawn, later copies are hidden (the GPU
     // gives them instance mask 0, the reference skips them).
-    std::map<std::array<double, 17>, size_t> seen;
-    size_t copies = 0;
-    for (size_t i = 0; i < s.objects.size(); ++i) {
-        Object& o = s.objects[i];
-        std::array<double, 17> key{double(o.type)};
+    auto key = [&](uint32_t i) {
+        std::array<double, 17> k{double(s.objects[i].type)};
         for (int c = 0; c < 4; ++c)
-            for (int k = 0; k < 4; ++k) key[1 + 4 * c + k] = o.transform[c][k];
-        auto [first, isNew] = seen.emplace(key, i);
-        if (isNew) continue;
-        o.hidden = true;
+            for (int r = 0; r < 4; ++r) k[1 + 4 * c + r] = s.objects[i].transform[c][r];
+        return k;
+    };
+    std::vector<uint32_t> byShape(s.objects.size());
+    for (uint32_t i = 0; i < byShape.size(); ++i) byShape[i] = i;
+    std::sort(byShape.begin(), byShape.end(), [&](uint32_t a, uint32_t b) {
+        auto ka = key(a), kb = key(b);
+        return ka != kb ? ka < kb : a < b;  // equal shapes in file order: the first is kept
+    });
+    size_t copies = 0;
+    for (size_t k = 1, first = 0; k < byShape.size(); ++k) {
+        if (key(byShape[k]) != key(byShape[first])) {
+            first = k;  // a new shape: its first object (in file order) is kept
+            continue;
+        }
+        s.objects[byShape[k]].hidden = true;
         if (++copies <= 3)
-            std::fprintf(stderr, "%s: objects[%zu] coincides with objects[%zu]; only the first is drawn\n",
-                         path.c_str(), i, first->second);
+            std::fprintf(stderr, "%s: objects[%u] coincides with objects[%u]; only the first is drawn\n",
+                         path.c_str(), byShape[k], byShape[first]);
     }
     if (copies > 3) std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n", path.c_str(), copies - 3);
     // [end]
