@@ -13,14 +13,7 @@
 #include <cstdio>
 #include <glm/glm.hpp>
 
-namespace shader {
-using namespace glm;
-using std::sqrt;
-#include "fresnel.glsl"
-#define RG_OUT(T) T&
-#include "sphere_intersect.glsl"
-#undef RG_OUT
-}  // namespace shader
+#include "glsl_as_cpp.h"
 
 namespace {
 

@@ -11,12 +11,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-namespace shader {
-using namespace glm;
-using uint = std::uint32_t;
-const float kPi = 3.14159265358979323846f;
-#include "sampling.glsl"
-}  // namespace shader
+#include "glsl_as_cpp.h"
 
 namespace {
 

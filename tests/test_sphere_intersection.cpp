@@ -9,13 +9,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
-namespace shader {
-using namespace glm;
-using std::sqrt;
-#define RG_OUT(T) T&
-#include "sphere_intersect.glsl"
-#undef RG_OUT
-}  // namespace shader
+#include "glsl_as_cpp.h"
 
 namespace {
 
