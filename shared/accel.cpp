@@ -229,8 +229,11 @@ uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z) {
 
 std::vector<uint32_t> mortonOrder(const Scene& scene) {
     glm::dvec3 lo(1e300), hi(-1e300);
-    for (const Object& o : scene.objects) lo = glm::min(lo, glm::dvec3(o.transform[3])), hi = glm::max(hi, glm::dvec3(o.transform[3]));
-    glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(1e-300));
+    for (const Object& o : scene.objects) {  // the bounds of the box centres
+        lo = glm::min(lo, glm::dvec3(o.transform[3]));
+        hi = glm::max(hi, glm::dvec3(o.transform[3]));
+    }
+    glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(1e-300));  // a flat axis maps to 0
     std::vector<std::pair<uint32_t, uint32_t>> keyed;  // (code, object)
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         glm::dvec3 c = (glm::dvec3(scene.objects[i].transform[3]) - lo) / extent * 1023.0;  // the box centre, 0..1023

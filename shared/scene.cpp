@@ -294,7 +294,7 @@ Scene loadScene(const std::string& path) {
     auto key = [&](uint32_t i) {
         std::array<double, 17> k{double(s.objects[i].type)};
         for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) k[1 + 4 * c + r] = s.objects[i].transform[c][r];
+            for (int row = 0; row < 4; ++row) k[1 + 4 * c + row] = s.objects[i].transform[c][row];
         return k;
     };
     std::vector<uint32_t> byShape(s.objects.size());
