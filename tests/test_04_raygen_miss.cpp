@@ -49,7 +49,7 @@ TEST(Chapter04, MatchesTheReference) {
 // The default scene translated by (1e4, 0, -1e4) ... (1e6, 0, -1e6), and the
 // eye on the mirror sphere's top: against the reference like any scene.
 TEST(Chapter04, FarFromTheOriginAndEyeOnASurfaceMatchTheReference) {
-    for (const char* scene : {"far_1e4", "far_1e5", "far_1e6", "eye_on_sphere"})
+    for (const char* scene : {"far_1e4", "far_1e5", "far_1e6", "eye_on_sphere", "spheres_1000"})
         rgtest::expectMatchesReference(RG_EXE_04, RG_SOURCE_DIR "/tests/scenes/" + std::string(scene) + ".json",
                                        std::string("04_") + scene);
 }
@@ -69,6 +69,23 @@ TEST(Chapter04, TranslationDoesNotChangeThePicture) {
     rg::ImageError e = rg::compareImages(rg::readPfm(dir + "/far.pfm"), rg::readPfm(dir + "/default.pfm"), nullptr);
     EXPECT_LE(e.fracOver1_255, 0.001);
     EXPECT_LT(e.rmse, 1e-4);
+}
+
+// The order of the TLAS's instances changes the tree, never the picture:
+// 1,000 spheres in Morton order and in the file's random order.
+TEST(Chapter04, InstanceOrderDoesNotChangeThePicture) {
+    std::string dir = rgtest::outputDir("04_order");
+    for (std::string order : {"morton", "file"}) {
+        std::vector<std::string> args = {"--headless", "--validation", "--width", "160", "--height", "90", "--frames",
+                                         "1", "--scene", RG_SOURCE_DIR "/tests/scenes/spheres_1000.json", "--output",
+                                         dir + "/" + order + ".png"};
+        if (order == "file") args.push_back("--file-order");
+        rgtest::RunResult r = rgtest::run(RG_EXE_04, args);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    rg::ImageError e = rg::compareImages(rg::readPfm(dir + "/file.pfm"), rg::readPfm(dir + "/morton.pfm"), nullptr);
+    EXPECT_EQ(e.fracOver1_255, 0.0);
+    EXPECT_LT(e.rmse, 1e-6);
 }
 
 TEST(Chapter04Windowed, TracesAndPresentsUnderXvfb) {
