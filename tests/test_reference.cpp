@@ -1,11 +1,12 @@
-// Compiled once per shading chapter (05-10; tests/CMakeLists.txt sets
+// Compiled once per shading chapter (05-11; tests/CMakeLists.txt sets
 // RG_THIS_EXE and RG_THIS_NAME): the chapter against the CPU double-precision
 // reference on its default scene and on every hard case under tests/scenes/
-// (scales 1e-3 and 1e5, a light on a surface, a grazing light, tangent rays,
-// overlapping spheres, a camera inside a sphere or inside glass (where total
-// internal reflection happens), glass at grazing incidence, touching glass
-// spheres, the depth limit), with
-// validation on and no NaN anywhere; and its window under Xvfb.
+// (scales 1e-3 and 1e5, the scene moved 1e4-1e6 from the origin, a light on
+// a surface, a grazing light, tangent rays, overlapping and coincident
+// spheres, the eye on a sphere, a camera inside a sphere or inside glass
+// (where total internal reflection happens), glass at grazing incidence,
+// touching glass spheres, the depth limit, 1,000 spheres), with validation on
+// and no NaN anywhere; and its window under Xvfb.
 #include "harness.h"
 
 #include <cctype>
