@@ -29,11 +29,11 @@ void writeFile(const std::string& path, const void* bytes, size_t size) {
     makeParent(path);
     std::FILE* file = std::fopen(path.c_str(), "wb");
     if (!file) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    bool ok = std::fwrite(bytes, 1, size, file) == size;
-    ok = std::fflush(file) == 0 && ok;
-    int error = errno;
-    ok = std::fclose(file) == 0 && ok;
-    if (!ok) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error ? error : errno));
+    int error = 0;  // the first failure's errno
+    if (std::fwrite(bytes, 1, size, file) != size) error = errno;
+    if (std::fflush(file) != 0 && !error) error = errno;
+    if (std::fclose(file) != 0 && !error) error = errno;
+    if (error) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
 }
 }  // namespace
 

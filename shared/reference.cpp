@@ -311,7 +311,7 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
     Progress progress("CPU reference", height);  // on a terminal only
     while (rowsDone.load() < height) {
         progress.update(rowsDone.load());
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     for (auto& w : workers) w.join();
     return image;
