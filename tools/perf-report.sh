@@ -38,7 +38,7 @@ page=docs/performance.md
     gnuplot -e "data='$dir/convergence.dat'; out='$plot'; device='$slug'" tools/plot_convergence.gp
     cat "$dir/perf.md"
     echo
-    echo "![Chapter 11: RMSE against samples per hit and against GPU time, $slug](images/$(basename "$plot"))"
+    echo "![Chapter 11: RMSE against accumulated samples, samples per hit and GPU time, $slug](images/$(basename "$plot"))"
     echo
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
