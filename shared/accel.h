@@ -46,6 +46,10 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
 std::vector<uint32_t> mortonOrder(const Scene& scene);
 uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z);  // 10 bits each, interleaved: x in bit 0, 3, 6, ...
 std::vector<uint32_t> fileOrder(const Scene& scene);  // 0, 1, 2, ...
+// Chapter 03's choice, for the chapters after it: Morton unless --file-order.
+inline std::vector<uint32_t> instanceOrder(const Scene& scene, bool keepFileOrder) {
+    return keepFileOrder ? fileOrder(scene) : mortonOrder(scene);
+}
 
 // TLAS instances: instance k is object order[k] (its custom index is the
 // object's index, which the shaders use), pointing at the quad or sphere

@@ -137,7 +137,7 @@ int report(int argc, char** argv) {
     // seeds. Their difference measures the error honestly (stratified
     // samples beat the independent-sample formula): each has error e, the
     // difference sqrt(2) e, the mean e / sqrt(2) = RMS(difference) / 2.
-    rg::Scene roughScene = rg::loadScene(scenes + "rough.json");
+    rg::Scene roughScene = rg::toCameraSpace(rg::loadScene(scenes + "rough.json"));  // as chapter 11 sees it
     rg::ReferenceRenderer renderer(roughScene);
     rg::FloatImage reference;
     double referenceError = 0;
