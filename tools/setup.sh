@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs what is missing (Debian 12), builds RayGlass, and runs every
+# Installs what is missing (Debian 12), builds RayGlass, runs every
 # chapter headless with validation, writing each chapter's PNG and JSON
-# report into one folder (default: out/) and printing one line per chapter.
+# report into one folder (default: out/) and printing one line per chapter,
+# and builds the docs site into out/site/ (tools/site.sh).
 #
 #   tools/setup.sh [--deps-only] [--out DIR] [--build DIR]
 #
@@ -23,7 +24,8 @@ while [ $# -gt 0 ]; do
 done
 
 packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev
-          libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3)
+          libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
+          mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium)
 min_mesa=24.1
 
 sudo_cmd=()
@@ -32,6 +34,7 @@ sudo_cmd=()
 need_what() {
   echo "RayGlass needs: a C++20 compiler, CMake >= 3.22, the Vulkan loader and headers, glslangValidator,"
   echo "GLFW 3.3, GLM, stb, nlohmann-json, CLI11, GoogleTest, Xvfb (window tests), jq, gnuplot,"
+  echo "mkdocs with mkdocs-material, pymdownx and KaTeX (the docs site), Chromium + chromedriver + selenium (its tests),"
   echo "and a Vulkan driver with VK_KHR_ray_tracing_pipeline (no GPU: Mesa lavapipe >= $min_mesa)."
 }
 
@@ -111,4 +114,8 @@ echo "== building in $build"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$(nproc)"
 
-exec tools/run-all.sh --build "$build" --out "$out"
+status=0
+tools/run-all.sh --build "$build" --out "$out" || status=1
+echo "== building the docs site"
+tools/site.sh --out "$out/site" || status=1
+exit $status

@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""Opens every page of the built site from disk (file://) in headless Chromium
+and checks what a reader would see:
+
+- every <img> loaded (natural width > 0);
+- every internal link resolves to a file of the site, and its #fragment to an
+  element of that page;
+- formulas rendered: a page whose Markdown has math shows KaTeX elements, one
+  per formula, and no raw `$$`, `\\(` or `\\[` in its text;
+- no message in the browser console (JavaScript errors, failed loads);
+- search works from disk: typing a word lists results.
+Saves screenshots of the front page and chapter 10 into OUT.
+
+    test_site.py SITE_DIR DOCS_DIR OUT_DIR
+"""
+import html.parser
+import pathlib
+import re
+import sys
+import time
+import urllib.parse
+
+from selenium import webdriver
+from selenium.webdriver.chrome.options import Options
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import WebDriverWait
+
+MATH = re.compile(r"\$\$.+?\$\$|(?<![\\$])\$[^$\s][^$\n]*?(?<!\s)\$", re.S)
+FENCE = re.compile(r"^```.*?^```|^    .*?$|`[^`\n]+`", re.S | re.M)
+
+
+class Ids(html.parser.HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.ids = set()
+
+    def handle_starttag(self, tag, attrs):
+        for k, v in attrs:
+            if k in ("id", "name") and v:
+                self.ids.add(v)
+
+
+def ids_of(path, cache={}):
+    if path not in cache:
+        p = Ids()
+        p.feed(path.read_text(errors="replace"))
+        cache[path] = p.ids
+    return cache[path]
+
+
+def formulas_in(markdown):
+    return len(MATH.findall(FENCE.sub("", markdown)))
+
+
+def browser():
+    o = Options()
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1280,900",
+                "--disable-dev-shm-usage"):
+        o.add_argument(arg)
+    o.binary_location = "/usr/bin/chromium"
+    o.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=o)
+
+
+def check_page(d, site, page, docs, failures):
+    rel = page.relative_to(site).as_posix()
+    d.get(page.as_uri())
+    WebDriverWait(d, 10).until(lambda d: d.execute_script("return document.readyState") == "complete")
+    fail = lambda msg: failures.append(f"{rel}: {msg}")
+    for src, ok in d.execute_script(
+            "return [...document.images].map(i => [i.getAttribute('src'), i.complete && i.naturalWidth > 0])"):
+        if not ok:
+            fail(f"image not loaded: {src}")
+    for href in d.execute_script("return [...document.querySelectorAll('a[href]')].map(a => a.getAttribute('href'))"):
+        url = urllib.parse.urlsplit(href)
+        if url.scheme or href.startswith("//"):
+            continue  # external: not followed (the site must work offline)
+        target = (page.parent / urllib.parse.unquote(url.path)).resolve() if url.path else page
+        if target.is_dir():
+            target = target / "index.html"
+        if not target.is_file() or site.resolve() not in target.parents:
+            fail(f"link to a missing file: {href}")
+        elif url.fragment and target.suffix == ".html" and urllib.parse.unquote(url.fragment) not in ids_of(target):
+            fail(f"link to a missing anchor: {href}")
+    source = docs / (rel[:-5] + ".md")
+    if source.is_file():
+        want = formulas_in(source.read_text())
+        got = d.execute_script("return document.querySelectorAll('.arithmatex .katex').length")
+        if got != want:
+            fail(f"{want} formula(s) in the Markdown, {got} rendered by KaTeX")
+        text = d.execute_script("return document.querySelector('article').innerText")
+        for raw in ("$$", "\\(", "\\["):
+            if raw in text:
+                fail(f"raw math '{raw}' left in the text")
+    for entry in d.get_log("browser"):
+        fail(f"console: {entry['level']} {entry['message']}")
+    return source.is_file() and formulas_in(source.read_text()) > 0
+
+
+def check_search(d, site, failures):
+    d.get((site / "index.html").as_uri())
+    box = d.find_element(By.CSS_SELECTOR, "input.md-search__input")
+    box.click()
+    box.send_keys("Schlick")
+    try:
+        WebDriverWait(d, 10).until(lambda d: d.find_elements(By.CSS_SELECTOR, ".md-search-result__item"))
+    except Exception:
+        failures.append("search from disk: no results for 'Schlick'")
+    for entry in d.get_log("browser"):
+        failures.append(f"search: console: {entry['level']} {entry['message']}")
+
+
+def main(site, docs, out):
+    site, docs, out = pathlib.Path(site).resolve(), pathlib.Path(docs).resolve(), pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    pages = sorted(p for p in site.rglob("*.html") if p.name != "404.html")
+    if not (site / "index.html").is_file():
+        print(f"test_site: no site in {site}")
+        return 1
+    failures, with_math = [], 0
+    d = browser()
+    try:
+        start = time.time()
+        for page in pages:
+            with_math += check_page(d, site, page, docs, failures)
+        check_search(d, site, failures)
+        for name, shot in (("index.html", "site_index.png"), ("10_refraction.html", "site_10_refraction.png")):
+            d.get((site / name).as_uri())
+            time.sleep(0.3)
+            d.save_screenshot(str(out / shot))
+        print(f"test_site: {len(pages)} pages ({with_math} with math) checked in {time.time() - start:.1f} s; "
+              f"screenshots in {out}")
+    finally:
+        d.quit()
+    if with_math == 0:
+        failures.append("no page has math: the formula check checked nothing")
+    for f in failures:
+        print("FAIL", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4:
+        print(__doc__)
+        sys.exit(2)
+    sys.exit(main(*sys.argv[1:]))

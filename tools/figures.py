@@ -1,0 +1,294 @@
+#!/usr/bin/env python3
+"""Draws the docs' explanatory figures as SVG into docs/images/:
+
+  04_sbt_layout.svg   the shader binding table of chapters 06-11 and how a ray picks its record
+  10_ray_tree.svg     chapter 10's ray tree through a glass sphere (n = 1.517), traced here exactly
+  11_lobe.svg         64 directions of chapter 11's lobe: the scrambled Sobol points, mapped
+
+    tools/figures.py            write them
+    tools/figures.py --check    exit 1 if a file differs from what this script draws (ctest: docs)
+
+Deterministic: the same script draws the same bytes. The lobe uses a Python
+port of shaders/common/sampling.glsl (its Sobol points and Owen scrambling).
+"""
+import math
+import pathlib
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+OUT = ROOT / "docs" / "images"
+FONT = "font-family='sans-serif' font-size='13'"
+M32 = 0xFFFFFFFF
+
+
+class Svg:
+    def __init__(self, w, h):
+        self.w, self.h, self.items = w, h, []
+
+    def add(self, s):
+        self.items.append(s)
+
+    def line(self, x1, y1, x2, y2, color="#333", width=1.5, dash=None, arrow=False):
+        extra = f" stroke-dasharray='{dash}'" if dash else ""
+        extra += " marker-end='url(#arrow)'" if arrow else ""
+        self.add(f"<line x1='{x1:.1f}' y1='{y1:.1f}' x2='{x2:.1f}' y2='{y2:.1f}' stroke='{color}' "
+                 f"stroke-width='{width}'{extra}/>")
+
+    def text(self, x, y, s, anchor="start", color="#222", size=13, weight="normal"):
+        s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+        self.add(f"<text x='{x:.1f}' y='{y:.1f}' text-anchor='{anchor}' fill='{color}' font-family='sans-serif' "
+                 f"font-size='{size}' font-weight='{weight}'>{s}</text>")
+
+    def rect(self, x, y, w, h, fill="#fff", stroke="#333"):
+        self.add(f"<rect x='{x:.1f}' y='{y:.1f}' width='{w:.1f}' height='{h:.1f}' fill='{fill}' stroke='{stroke}'/>")
+
+    def circle(self, x, y, r, fill="none", stroke="#333", width=1.5):
+        self.add(f"<circle cx='{x:.1f}' cy='{y:.1f}' r='{r:.1f}' fill='{fill}' stroke='{stroke}' stroke-width='{width}'/>")
+
+    def svg(self):
+        head = (f"<svg xmlns='http://www.w3.org/2000/svg' width='{self.w}' height='{self.h}' "
+                f"viewBox='0 0 {self.w} {self.h}'>\n<defs><marker id='arrow' viewBox='0 0 10 10' refX='9' refY='5' "
+                "markerWidth='7' markerHeight='7' orient='auto-start-reverse'><path d='M0,0 L10,5 L0,10 z' "
+                "fill='context-stroke'/></marker></defs>\n"
+                f"<rect width='{self.w}' height='{self.h}' fill='white'/>\n")
+        return head + "\n".join(self.items) + "\n</svg>\n"
+
+
+# --- chapter 04: the SBT -------------------------------------------------------------------------
+def sbt_layout():
+    handle, handle_align, base_align = 32, 32, 64  # an example; shared/sbt.h computes it from the device
+    stride = -(-handle // handle_align) * handle_align
+    up = lambda v: -(-v // base_align) * base_align
+    raygen_size = up(stride)
+    misses = ["sky", "shadow"]
+    hits = ["quad", "sphere", "sphere mesh", "quad", "sphere", "sphere mesh"]
+    miss_off, hit_off = raygen_size, raygen_size + up(len(misses) * stride)
+    total = hit_off + up(len(hits) * stride)
+    s = Svg(900, 270)
+    scale, x0, y0 = 2.0, 20, 70
+    s.text(x0, 24, "The shader binding table of chapters 06-11 (handles of 32 bytes, alignments 32 / 64 bytes: "
+           "an example)", weight="bold")
+    s.text(x0, 44, "raygen | miss | hit regions each start at a multiple of shaderGroupBaseAlignment; "
+           "records inside a region are one stride apart", size=12, color="#444")
+
+    def region(off, names, color, label, count_size, first=0):
+        for i, n in enumerate(names):
+            x = x0 + (off + i * stride) * scale
+            s.rect(x, y0, stride * scale, 56, fill=color)
+            s.text(x + stride * scale / 2, y0 + 24, str(first + i), anchor="middle", weight="bold")
+            s.text(x + stride * scale / 2, y0 + 42, n, anchor="middle", size=10)
+        pad_from = off + len(names) * stride
+        pad_to = off + count_size
+        if pad_to > pad_from:
+            s.rect(x0 + pad_from * scale, y0, (pad_to - pad_from) * scale, 56, fill="#eee", stroke="#aaa")
+            s.text(x0 + (pad_from + pad_to) / 2 * scale, y0 + 32, "pad", anchor="middle", size=10, color="#777")
+        if label:
+            s.text(x0 + off * scale, y0 + 76, f"{label} @ {off}", size=12)
+
+    region(0, ["raygen"], "#d7e3fc", "raygen", raygen_size)
+    region(miss_off, misses, "#d8f3dc", "miss", up(len(misses) * stride))
+    region(hit_off, hits[:3], "#ffe5b4", "hit", up(len(hits) * stride))
+    region(hit_off + 3 * stride, hits[3:], "#fcd5ce", "", 0, first=3)
+    s.text(x0 + total * scale, y0 + 76, f"{total} bytes", anchor="end", size=12)
+    s.text(x0 + (hit_off + 1.5 * stride) * scale, y0 - 8, "camera and bounce rays (ray type 0)", anchor="middle",
+           size=11)
+    s.text(x0 + (hit_off + 4.5 * stride) * scale, y0 - 8, "shadow rays (ray type offset 3)", anchor="middle",
+           size=11)
+    y = 190
+    s.text(x0, y, "hit record = hit region + stride × (instance SBT offset + ray type offset)", weight="bold")
+    s.text(x0, y + 22, "instance SBT offset: 0 quad, 1 analytic sphere, 2 sphere mesh (set per instance in the TLAS, "
+           "chapter 03)", size=12)
+    s.text(x0, y + 42, "ray type offset: traceRayEXT's sbtRecordOffset, 0 for camera and bounce rays, 3 for shadow "
+           "rays (chapter 06)", size=12)
+    s.text(x0, y + 62, "miss record = miss region + stride × missIndex: 0 sky, 1 shadow (nothing in the way: lit)",
+           size=12)
+    # the example: a shadow ray hitting a sphere uses record 1 + 3 = 4
+    xr = x0 + (hit_off + 4.5 * stride) * scale
+    s.line(xr, y - 14, xr, y0 + 60, color="#c0392b", arrow=True)
+    s.text(xr + 8, y - 24, "a shadow ray hits a sphere: 1 + 3 = record 4", color="#c0392b", size=11)
+    return s.svg()
+
+
+# --- chapter 10: the ray tree ---------------------------------------------------------------------
+def refract(d, n, eta):
+    c1 = -(d[0] * n[0] + d[1] * n[1])
+    k = 1 - eta * eta * (1 - c1 * c1)
+    if k < 0:
+        return None
+    c2 = math.sqrt(k)
+    return (eta * d[0] + (eta * c1 - c2) * n[0], eta * d[1] + (eta * c1 - c2) * n[1])
+
+
+def reflect(d, n):
+    dn = d[0] * n[0] + d[1] * n[1]
+    return (d[0] - 2 * dn * n[0], d[1] - 2 * dn * n[1])
+
+
+def fresnel(cos_i, n1, n2):
+    s2 = (n1 / n2) ** 2 * max(0.0, 1 - cos_i * cos_i)
+    if s2 >= 1:
+        return 1.0
+    cos_t = math.sqrt(1 - s2)
+    rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t)
+    rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t)
+    return 0.5 * (rs * rs + rp * rp)
+
+
+def exit_point(o, d, c, r):
+    """The far intersection of the ray o + t d (|d| = 1, o on or in the circle) with the circle."""
+    ox, oy = o[0] - c[0], o[1] - c[1]
+    b = ox * d[0] + oy * d[1]
+    q = ox * ox + oy * oy - r * r
+    t = -b + math.sqrt(max(0.0, b * b - q))
+    return (o[0] + t * d[0], o[1] + t * d[1])
+
+
+def ray_tree():
+    n_glass = 1.517
+    s = Svg(760, 420)
+    c, r = (380.0, 225.0), 120.0
+    s.circle(*c, r, fill="#e8f4fb", stroke="#2b6f99", width=2)
+    s.text(c[0], c[1] + r + 24, f"glass, n = {n_glass}", anchor="middle", color="#2b6f99")
+    s.text(20, 24, "Chapter 10's ray tree: every glass hit splits into a reflected (F) and a refracted (1 - F) "
+           "ray", weight="bold")
+    s.text(20, 44, "Traced here with Snell's law and the exact Fresnel equations; weights are the fraction "
+           "of the camera ray's light each branch carries", size=12, color="#444")
+    eye = (20.0, 170.0)
+    d = (1.0, 0.0)
+    # first hit on the sphere's near side
+    oy = eye[1] - c[1]
+    x_hit = c[0] - math.sqrt(r * r - oy * oy)
+    p1 = (x_hit, eye[1])
+    s.line(*eye, *p1, color="#111", width=2.2, arrow=True)
+    s.text(eye[0], eye[1] - 10, "camera ray, depth 0")
+    n1 = ((p1[0] - c[0]) / r, (p1[1] - c[1]) / r)
+    cos1 = -(d[0] * n1[0] + d[1] * n1[1])
+    f1 = fresnel(cos1, 1.0, n_glass)
+    rd = reflect(d, n1)
+    s.line(*p1, p1[0] + 110 * rd[0], p1[1] + 110 * rd[1], color="#c0392b", width=1.8, arrow=True)
+    s.text(p1[0] + 110 * rd[0] - 6, p1[1] + 110 * rd[1] - 8, f"reflected, depth 1: F = {f1:.3f}", anchor="middle",
+           color="#c0392b", size=12)
+    t1 = refract(d, n1, 1 / n_glass)
+    p2 = exit_point(p1, t1, c, r)
+    s.line(*p1, *p2, color="#1e7b4f", width=1.8, arrow=True)
+    s.text((p1[0] + p2[0]) / 2 + 10, (p1[1] + p2[1]) / 2 - 8, f"refracted: {1 - f1:.3f}", color="#1e7b4f", size=12)
+    # inside: hits the far side from within
+    n2 = ((c[0] - p2[0]) / r, (c[1] - p2[1]) / r)  # the normal facing the ray (inward)
+    cos2 = -(t1[0] * n2[0] + t1[1] * n2[1])
+    f2 = fresnel(cos2, n_glass, 1.0)
+    t2 = refract(t1, n2, n_glass)
+    s.line(*p2, p2[0] + 150 * t2[0], p2[1] + 150 * t2[1], color="#1e7b4f", width=1.8, arrow=True)
+    s.text(p2[0] + 150 * t2[0] - 40, p2[1] + 150 * t2[1] + 18,
+           f"leaves, depth 2: {(1 - f1) * (1 - f2):.3f}", color="#1e7b4f", size=12)
+    r2 = reflect(t1, n2)
+    p3 = exit_point(p2, r2, c, r)
+    s.line(*p2, *p3, color="#c0392b", width=1.4, dash="5,3", arrow=True)
+    s.text(p3[0] - 20, p3[1] + 26, f"reflected inside, depth 2: {(1 - f1) * f2:.4f}", anchor="end",
+           color="#c0392b", size=12)
+    for p in (p1, p2, p3):
+        s.circle(*p, 3.5, fill="#111", stroke="#111")
+    s.text(20, 392, f"The ray enters at {math.degrees(math.acos(cos1)):.1f}° from the normal and meets the far side "
+           f"at {math.degrees(math.acos(cos2)):.1f}° from inside, the angle it refracted to:", size=12, color="#444")
+    s.text(20, 410, "so it can always leave (no total internal reflection). Each branch splits again at its next "
+           "hit, until --depth.", size=12, color="#444")
+    return s.svg()
+
+
+# --- chapter 11: the lobe -------------------------------------------------------------------------
+def pcg_hash(v):
+    state = (v * 747796405 + 2891336453) & M32
+    word = (((state >> ((state >> 28) + 4)) ^ state) * 277803737) & M32
+    return ((word >> 22) ^ word) & M32
+
+
+def bit_reverse(x):
+    return int(f"{x:032b}"[::-1], 2)
+
+
+def sobol_second(i):
+    v, y = 0x80000000, 0
+    while i:
+        if i & 1:
+            y ^= v
+        i >>= 1
+        v ^= v >> 1
+    return y
+
+
+def owen(x, seed):
+    x = bit_reverse(x)
+    x = (x + seed) & M32
+    for k in (0x6c50b47c, 0xb82f1e52, 0xc7afe638, 0x8d22f6e6):
+        x ^= (x * k) & M32
+    return bit_reverse(x)
+
+
+def sobol_point(i, seed):
+    x = owen(bit_reverse(i), pcg_hash(seed))
+    y = owen(sobol_second(i), pcg_hash((seed + 1) & M32))
+    return (x >> 8) / 16777216.0, (y >> 8) / 16777216.0
+
+
+def lobe():
+    roughness, count, seed = 0.3, 64, pcg_hash(12345)
+    theta_max = roughness * math.pi / 2
+    cos_max = math.cos(theta_max)
+    pts = [sobol_point(i, seed) for i in range(count)]
+    cells = {(int(u1 * 8), int(u2 * 8)) for u1, u2 in pts}
+    assert len(cells) == 64, "the first 64 points must fill the 8 x 8 strata (a (0,6,2)-net)"
+    s = Svg(760, 380)
+    s.text(20, 24, f"Chapter 11's lobe: {count} directions for roughness {roughness} (cone half-angle "
+           f"{math.degrees(theta_max):.0f}°), scrambled Sobol points", weight="bold")
+    # left: side view, directions as unit vectors projected on the plane of r and t1
+    cx, cy, L = 200.0, 330.0, 240.0
+    s.line(cx - 170, cy, cx + 170, cy, color="#555", width=2)
+    s.text(cx + 170, cy + 18, "surface", anchor="end", size=11, color="#555")
+    for sign in (-1, 1):
+        a = sign * theta_max
+        s.line(cx, cy, cx + L * math.sin(a), cy - L * math.cos(a), color="#999", dash="4,3")
+    for u1, u2 in pts:
+        ct = 1 - u1 * (1 - cos_max)
+        st = math.sqrt(max(0.0, 1 - ct * ct))
+        x = st * math.cos(2 * math.pi * u2)
+        s.line(cx, cy, cx + L * 0.92 * x, cy - L * 0.92 * ct, color="#2b6f99", width=0.8)
+    s.line(cx, cy, cx, cy - L - 10, color="#c0392b", width=2.2, arrow=True)
+    s.text(cx + 6, cy - L - 4, "r (mirror direction)", color="#c0392b", size=12)
+    s.text(cx, 352 + 16, "side view: each line one sample direction", anchor="middle", size=12, color="#444")
+    # right: equal-area view from above along r, with the 8 x 8 strata of (u1, u2)
+    ox, oy, R = 560.0, 190.0, 132.0
+    for k in range(1, 9):
+        s.circle(ox, oy, R * math.sqrt(k / 8), stroke="#bbb", width=1)
+    for k in range(8):
+        a = 2 * math.pi * k / 8
+        s.line(ox, oy, ox + R * math.cos(a), oy - R * math.sin(a), color="#bbb", width=1)
+    for u1, u2 in pts:
+        rho, phi = R * math.sqrt(u1), 2 * math.pi * u2
+        s.circle(ox + rho * math.cos(phi), oy - rho * math.sin(phi), 3.2, fill="#2b6f99", stroke="#2b6f99", width=1)
+    s.text(ox, oy + R + 22, "from above, equal-area (radius ∝ √(1 − cos θ)):", anchor="middle", size=12,
+           color="#444")
+    s.text(ox, oy + R + 40, "one point in each of the 64 cells of equal solid angle", anchor="middle", size=12,
+           color="#444")
+    return s.svg()
+
+
+FIGURES = {"04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree, "11_lobe.svg": lobe}
+
+
+def main(argv):
+    check = "--check" in argv
+    stale = []
+    for name, draw in FIGURES.items():
+        want, path = draw(), OUT / name
+        if check:
+            if not path.exists() or path.read_text() != want:
+                stale.append(name)
+        else:
+            path.write_text(want)
+    if stale:
+        print("figures.py: these differ from what tools/figures.py draws (run it): " + ", ".join(stale))
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
