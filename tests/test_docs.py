@@ -90,6 +90,11 @@ class DocsCheck(unittest.TestCase):
         self.assertIn("[`chapters/02_b/main.cpp`](../chapters/02_b/main.cpp)", text)
         self.assertIn("Previous: [01 · Title 1](01_a.md)", text)
         self.assertIn("Next: [03 · Title 3](03_c.md)", text)
+        self.assertIn("## Next\n\n[03 · Title 3](03_c.md).", text)  # no index.md: no teaser
+        (self.root / "docs" / "index.md").write_text("| # | chapter | thesis | new in it |\n| 03 | [c](03_c.md) | 1 | rays |\n")
+        self.assertEqual(docs(self.root, "--check").returncode, 1)  # the teaser comes from the index
+        self.assertEqual(docs(self.root, "--write").returncode, 0)
+        self.assertIn("[03 · Title 3](03_c.md): rays.", (self.root / "docs" / "02_b.md").read_text())
         (self.root / "docs" / "03_c.md").write_text("# 03 · Renamed\n")
         self.assertEqual(docs(self.root, "--check").returncode, 1)  # the next page's title changed
 

@@ -102,6 +102,18 @@ def title(page):
     return first.lstrip("# ").strip()
 
 
+def what_is_new(root, nn):
+    """The "new in it" column of the chapter table in docs/index.md, or None."""
+    index = root / "docs" / "index.md"
+    if not index.exists():
+        return None
+    for line in index.read_text().splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 4 and cells[0] == nn:
+            return cells[3]
+    return None
+
+
 def footer(root, chapter):
     """Sources and previous/next links of a chapter page (docs/NN_name.md)."""
     if not CHAPTER.match(chapter):
@@ -127,13 +139,20 @@ def footer(root, chapter):
         raise DocsError(f"footer {chapter}: missing {', '.join(missing)}")
     links = " · ".join(f"[`{s}`](../{s})" for s in sources)
     i = names.index(chapter)
+    if i + 1 < len(pages):
+        after = names[i + 1]
+        teaser = what_is_new(root, after[:2])
+        upcoming = f"[{title(pages[i + 1])}]({pages[i + 1].name})" + (f": {teaser}." if teaser else ".")
+    else:
+        upcoming = ("This is the last chapter. \"Where next\" above lists what could follow; the "
+                    "[performance page](performance.md) compares every chapter's speed and error.")
     nav = []
     if i > 0:
         nav.append(f"Previous: [{title(pages[i - 1])}]({pages[i - 1].name})")
     nav.append("[Contents](index.md)")
     if i + 1 < len(pages):
         nav.append(f"Next: [{title(pages[i + 1])}]({pages[i + 1].name})")
-    return f"\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
+    return f"\n## Next\n\n{upcoming}\n\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
 
 
 def render(root, kind, arg):
