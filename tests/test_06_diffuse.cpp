@@ -19,4 +19,12 @@ TEST(Chapter06, FixedEpsilonFailsWhereTheRobustOffsetPasses) {
     }
 }
 
+TEST(Chapter06, NonPositiveEpsilonIsOneClearLine) {
+    for (const char* bad : {"0", "-1e-3", "abc", "1e40"}) {
+        rgtest::RunResult r = rgtest::run(RG_EXE_06, {"--headless", "--fixed-epsilon", bad});
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("--fixed-epsilon: must be a positive distance"), std::string::npos) << r.output;
+    }
+}
+
 }  // namespace

@@ -1,6 +1,8 @@
 // Chapter 06 - Diffuse light and shadows (thesis 3.2). The ray generation
 // shader adds k_d * I_i * max(0, l.n) for each light a shadow ray reaches;
 // shadow rays have their own miss shader and hit groups.
+#include <cstdlib>
+
 #include "rt_chapter.h"
 
 int main(int argc, char** argv) {
@@ -12,7 +14,10 @@ int main(int argc, char** argv) {
         .options = [](CLI::App& app, rg::RtChapterSettings& s) {
             app.add_option("--fixed-epsilon", s.epsilon,
                            "Experiment: start shadow rays at p + E*n instead of the robust offset")
-                ->check(CLI::Range(1e-30, 1e30));
+                ->check([](const std::string& v) {  // a distance: finite and > 0
+                    double e = std::strtod(v.c_str(), nullptr);
+                    return e > 0 && e < 1e30 ? std::string() : "must be a positive distance, not " + v;
+                });
         },
     });
 }
