@@ -31,7 +31,8 @@ CHAPTER = re.compile(r"^(\d\d)_\w+$")
 OPEN = re.compile(r"^\s*(?://|#)\s*\[region ([\w.-]+)\]\s*$")
 CLOSE = re.compile(r"^\s*(?://|#)\s*\[end\]\s*$")
 LANG = {".cpp": "cpp", ".h": "cpp", ".glsl": "glsl", ".comp": "glsl", ".rgen": "glsl", ".rchit": "glsl",
-        ".rmiss": "glsl", ".rint": "glsl", ".rahit": "glsl", ".json": "json", ".sh": "bash", ".txt": "cmake"}
+        ".rmiss": "glsl", ".rint": "glsl", ".rahit": "glsl", ".json": "json", ".sh": "bash", ".txt": "cmake",
+        ".py": "python", ".gp": "gnuplot", ".md": "markdown"}
 
 
 class DocsError(Exception):

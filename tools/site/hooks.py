@@ -15,17 +15,17 @@ import logging
 import pathlib
 import re
 import shutil
+import sys
 import tempfile
 
 from mkdocs.exceptions import PluginError
 from mkdocs.structure.files import File
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from docs import LANG  # noqa: E402  the languages the docs' listings use, per file suffix
 KATEX = pathlib.Path("/usr/share/javascript/katex")
 LINK = re.compile(r"\]\(\.\./([^)#\s]+)\)")
-LANG = {".cpp": "cpp", ".h": "cpp", ".glsl": "glsl", ".comp": "glsl", ".rgen": "glsl", ".rchit": "glsl",
-        ".rmiss": "glsl", ".rint": "glsl", ".rahit": "glsl", ".json": "json", ".sh": "bash", ".py": "python",
-        ".txt": "cmake", ".gp": "gnuplot", ".supp": "text", ".md": "markdown"}
 _generated = None  # the folder of generated pages, kept for `mkdocs serve` rebuilds
 
 
