@@ -17,7 +17,6 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "images"
-FONT = "font-family='sans-serif' font-size='13'"
 M32 = 0xFFFFFFFF
 
 

@@ -26,7 +26,6 @@ sys.path.insert(0, str(ROOT / "tools"))
 from docs import LANG  # noqa: E402  the languages the docs' listings use, per file suffix
 KATEX = pathlib.Path("/usr/share/javascript/katex")
 LINK = re.compile(r"\]\(\.\./([^)#\s]+)\)")
-_generated = None  # the folder of generated pages, kept for `mkdocs serve` rebuilds
 
 
 class _QuietCodePages(logging.Filter):
@@ -56,7 +55,6 @@ def _code_page(rel):
 
 
 def on_files(files, config):
-    global _generated
     docs = pathlib.Path(config["docs_dir"])
     # docs/perf/<device>/perf.md are inputs of performance.md, not pages
     for f in [f for f in files if f.src_path.startswith("perf/") and f.src_path.endswith(".md")]:
@@ -64,10 +62,10 @@ def on_files(files, config):
     wanted = []
     for page in sorted(docs.glob("*.md")):
         for rel in LINK.findall(page.read_text()):
-            if (ROOT / rel).exists() and rel not in wanted:
+            if (ROOT / rel).exists():
                 wanted.append(rel)
-    _generated = pathlib.Path(tempfile.mkdtemp(prefix="rayglass-code-"))
-    atexit.register(shutil.rmtree, _generated, True)
+    generated = pathlib.Path(tempfile.mkdtemp(prefix="rayglass-code-"))
+    atexit.register(shutil.rmtree, generated, True)
     done = set()
     while wanted:
         rel = wanted.pop(0)
@@ -75,10 +73,10 @@ def on_files(files, config):
             continue
         done.add(rel)
         text, more = _code_page(rel)
-        out = _generated / "code" / f"{rel}.md"
+        out = generated / "code" / f"{rel}.md"
         out.parent.mkdir(parents=True, exist_ok=True)
         out.write_text(text)
-        files.append(File(f"code/{rel}.md", str(_generated), config["site_dir"], config["use_directory_urls"]))
+        files.append(File(f"code/{rel}.md", str(generated), config["site_dir"], config["use_directory_urls"]))
         wanted += more
     return files
 
