@@ -16,9 +16,9 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
     app.add_option("--scene", opts.scene, "Scene JSON file (default: the chapter's own scene)");
     app.add_flag("--file-order", opts.fileOrder,
                  "Build the TLAS from the objects in the scene file's order instead of Morton order");
-    if (reference)
-        app.add_flag("--reference", opts.reference,
-                     "Also render the CPU double-precision reference and report the error");
+    if (!reference) return;
+    app.add_flag("--reference", opts.reference, "Also render the CPU double-precision reference and report the error");
+    app.add_flag("!--no-ui", opts.ui, "Start the window without its overlay (H shows it)");
 }
 
 std::optional<int> parseCommandLine(int argc, char** argv, const std::string& chapter,

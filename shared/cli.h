@@ -24,6 +24,8 @@ struct Options {
     std::string scene;            // scene JSON (default: the chapter's own)
     bool reference = false;       // also render the CPU double-precision reference
     bool fileOrder = false;       // TLAS instances in the scene file's order, not Morton order
+    // From chapter 04 on:
+    bool ui = true;               // the window's overlay (viewer.h); --no-ui starts without it
 
     int framesToRun() const { return frames > 0 ? frames : (headless ? 10 : 0); }
 };
@@ -36,7 +38,8 @@ std::optional<int> parseCommandLine(int argc, char** argv, const std::string& ch
                                     const std::string& description, Options& opts,
                                     const ChapterOptions& chapterOptions = {});
 
-// Options every scene chapter (03+) adds: --scene, and with reference=true also --reference.
+// Options every scene chapter (03+) adds: --scene, --file-order; the ray
+// tracing chapters (reference=true, 04+) also --reference and --no-ui.
 void addSceneOptions(CLI::App& app, Options& opts, bool reference);
 
 // True when a window can be opened (an X11 or Wayland display is set).

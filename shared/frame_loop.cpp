@@ -48,11 +48,7 @@ FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipe
         for (VkSemaphore s : *semaphores) vkDestroySemaphore(device, s, nullptr);
     });
 
-    // The target lives in GENERAL layout: shaders write it, blits and copies read it.
-    submitOnce(gpu, [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, renderStage, VK_ACCESS_SHADER_WRITE_BIT);
-    });
+    prepareTarget();
     VkFormatProperties props;
     vkGetPhysicalDeviceFormatProperties(gpu.physical.handle, target.format, &props);
     if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT)
@@ -61,6 +57,14 @@ FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipe
         window_->createSwapchain(gpu_, deletion_);
         ensureRenderFinishedSemaphores();
     }
+}
+
+void FrameLoop::prepareTarget() {
+    // The target lives in GENERAL layout: shaders write it, blits and copies read it.
+    submitOnce(gpu_, [&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, renderStage_, VK_ACCESS_SHADER_WRITE_BIT);
+    });
 }
 
 void FrameLoop::ensureRenderFinishedSemaphores() {
@@ -75,11 +79,13 @@ void FrameLoop::ensureRenderFinishedSemaphores() {
 void FrameLoop::recreateSwapchain() {
     window_->createSwapchain(gpu_, deletion_);
     ensureRenderFinishedSemaphores();
+    if (swapchainRecreated) swapchainRecreated();
 }
 
 // [region frame_loop]
 FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
-    FrameTimes times;
+    FrameTimes& times = times_;  // a member: the overlay shows it while frames run
+    times = {};
     uint32_t frame = 0;
     while (frames == 0 || frame < uint32_t(frames)) {
         auto cpuStart = std::chrono::steady_clock::now();
@@ -236,6 +242,17 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
     // barrier orders their writes after this blit's reads).
     imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, 0, renderStage_, 0);
+    if (overlay) {  // drawn over the blitted image: the window's only pixels not ray traced
+        imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+        overlay(cmd, imageIndex);
+        imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+        return;
+    }
     imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                  VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);  // present waits on the semaphore

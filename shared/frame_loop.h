@@ -36,6 +36,18 @@ public:
     // frames have no blit).
     bool omitRenderBarrier = false;
 
+    // Interactive chapters (viewer.h) hook in here. overlay: records draws
+    // over the presented image after the blit (it is in
+    // COLOR_ATTACHMENT_OPTIMAL then). swapchainRecreated: runs after a
+    // resize re-created the swapchain, with the device idle.
+    std::function<void(VkCommandBuffer cmd, uint32_t imageIndex)> overlay;
+    std::function<void()> swapchainRecreated;
+
+    // The target was re-created (a resize): moves it into GENERAL layout.
+    void prepareTarget();
+    // The frames measured so far in run().
+    const FrameTimes& times() const { return times_; }
+
 private:
     struct Frame {
         VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -59,6 +71,7 @@ private:
     // queue, which destroys them after this object is gone.
     std::shared_ptr<std::vector<VkSemaphore>> renderFinished_ = std::make_shared<std::vector<VkSemaphore>>();
     VkFilter blitFilter_ = VK_FILTER_NEAREST;
+    FrameTimes times_;
 };
 
 }  // namespace rg

@@ -7,20 +7,21 @@
 #include "rt_report.h"
 #include "rt_scene.h"
 #include "scene.h"
-
-#include <algorithm>
+#include "viewer.h"
 
 namespace rg {
 
 int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     Options opts;
     RtChapterSettings settings;
+    Params params;
+    params.integer("--sphere-mesh", settings.sphereMesh,
+                   "Spheres as icospheres subdivided this often (0: analytic spheres)", 0, 7)
+        .live = false;  // the acceleration structures are built once
+    if (chapter.options) chapter.options(params, settings);
     auto extra = [&](CLI::App& app, Options& o) {
         addSceneOptions(app, o, true);
-        app.add_option("--sphere-mesh", settings.sphereMesh,
-                       "Spheres as icospheres subdivided this often (1-7; 0: analytic, the default)")
-            ->check(CLI::Range(0, 7));
-        if (chapter.options) chapter.options(app, settings);
+        params.addTo(app);
     };
     if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
     return runChapter(opts, [&] {
@@ -50,31 +51,16 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
                                                shaders);
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
-        uint32_t firstFrame = 0;  // of the current accumulation
-        const char* patterns[] = {"uniform", "stratified", "hammersley", "sobol"};
+        Viewer viewer(app, opts, scene, rt, target, loop, params);  // a window's camera, overlay and keys
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
-            if (app.window && settings.accumulate) {
-                // P: next sample pattern; up/down: twice or half the samples. Both restart the average.
-                for (int key : app.window->takeKeys()) {
-                    if (key == GLFW_KEY_P) settings.pattern = (settings.pattern + 1) % 4;
-                    else if (key == GLFW_KEY_UP) settings.samplesPerHit = std::min(1024, settings.samplesPerHit * 2);
-                    else if (key == GLFW_KEY_DOWN) settings.samplesPerHit = std::max(1, settings.samplesPerHit / 2);
-                    else continue;
-                    firstFrame = frame;
-                }
-                uint32_t frames = frame - firstFrame + 1;
-                app.window->setTitle(chapter.title + " - " + patterns[settings.pattern] + ", " +
-                                     std::to_string(settings.samplesPerHit) + " samples/hit x " +
-                                     std::to_string(frames) + " frames = " +
-                                     std::to_string(frames * settings.samplesPerHit) + " (P, up, down)");
-            }
+            uint32_t unchanged = viewer.update(cmd, frame);  // frames since the picture last changed
             gpu::RtPush push{
                 .frame = frame,
                 .maxDepth = uint32_t(settings.maxDepth),
                 .samplesPerHit = uint32_t(settings.samplesPerHit),
                 .pattern = uint32_t(settings.pattern),
                 .fresnelMode = uint32_t(settings.fresnelMode),
-                .accumulated = settings.accumulate ? frame - firstFrame : 0,
+                .accumulated = settings.accumulate ? unchanged : 0,
                 .epsilon = settings.epsilon,
             };
             recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);

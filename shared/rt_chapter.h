@@ -2,6 +2,7 @@
 // is chapter 04's main() for them, with the shadow ray type added to the SBT.
 #pragma once
 #include "cli.h"
+#include "params.h"
 #include "reference.h"
 
 #include <functional>
@@ -25,8 +26,9 @@ struct RtChapter {
     std::string description;  // for --help
     std::string title;        // the window's title
     ReferenceStage stage;     // what the CPU reference renders
-    // Adds the chapter's own options (chapter 06: --fixed-epsilon, ...).
-    std::function<void(CLI::App&, RtChapterSettings&)> options;
+    // Declares the chapter's own parameters (chapter 06: --fixed-epsilon,
+    // ...): each is a command-line option and a control in the overlay.
+    std::function<void(Params&, RtChapterSettings&)> options;
 };
 
 int runRtChapter(int argc, char** argv, const RtChapter& chapter);

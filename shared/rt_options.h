@@ -1,25 +1,21 @@
-// Command-line options that several ray tracing chapters share.
+// Parameters that several ray tracing chapters share, declared once for the
+// command line and the overlay (params.h).
 #pragma once
+#include "params.h"
 #include "rt_chapter.h"
-
-#include <map>
 
 namespace rg {
 
 // --depth: how many times a ray may bounce (reflect or refract), 0 to 8.
-inline void addDepthOption(CLI::App& app, RtChapterSettings& s, int defaultDepth) {
+inline void addDepthOption(Params& params, RtChapterSettings& s, int defaultDepth) {
     s.maxDepth = defaultDepth;
-    app.add_option("--depth", s.maxDepth, "Bounce limit (reflections and refractions per path)")
-        ->check(CLI::Range(0, 8))
-        ->capture_default_str();
+    params.integer("--depth", s.maxDepth, "Bounce limit (reflections and refractions per path)", 0, 8);
 }
 
 // --fresnel: schlick (the material's f0, the thesis's 0.08), schlick-ior
 // (f0 from the index of refraction), exact (the Fresnel equations).
-inline void addFresnelOption(CLI::App& app, RtChapterSettings& s) {
-    app.add_option("--fresnel", s.fresnelMode, "Fresnel reflectance: schlick, schlick-ior or exact")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, int>{{"schlick", 0}, {"schlick-ior", 1}, {"exact", 2}},
-                                            CLI::ignore_case));
+inline void addFresnelOption(Params& params, RtChapterSettings& s) {
+    params.choice("--fresnel", s.fresnelMode, "Fresnel reflectance", {"schlick", "schlick-ior", "exact"});
 }
 
 }  // namespace rg

@@ -45,7 +45,18 @@ Buffer storage(const Gpu& gpu, DeletionQueue& deletion, const std::vector<T>& da
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 glm::vec4 v4(const glm::dvec3& v, double w = 0) { return glm::vec4(glm::dvec4(v, w)); }
+Buffer createRayCounts(const Gpu& gpu, DeletionQueue& deletion, uint32_t width, uint32_t height) {
+    return createBuffer(gpu, deletion, VkDeviceSize(width) * height * sizeof(uint32_t),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
 }  // namespace
+
+gpu::GpuMaterial toGpuMaterial(const Material& m) {
+    return {v4(m.ka), v4(m.kd), v4(m.ks),
+            glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
+            glm::vec4(float(m.f0), float(m.roughness), 0, 0)};
+}
 
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
                     const std::vector<uint32_t>& order, int sphereMeshLevel) {
@@ -71,19 +82,14 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     for (const auto& o : scene.objects)
         objects.push_back({o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
     std::vector<gpu::GpuMaterial> materials;
-    for (const auto& m : scene.materials)
-        materials.push_back({v4(m.ka), v4(m.kd), v4(m.ks),
-                             glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
-                             glm::vec4(float(m.f0), float(m.roughness), 0, 0)});
+    for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m));
     std::vector<gpu::GpuLight> lights;
     for (const auto& l : scene.lights) lights.push_back({v4(l.position, 1), v4(l.intensity)});
     rt.objects = storage(gpu, deletion, objects);
     rt.materials = storage(gpu, deletion, materials);
     rt.lights = storage(gpu, deletion, lights);
     rt.sky = storage(gpu, deletion, sky.rgba);
-    rt.rayCount = createBuffer(gpu, deletion, VkDeviceSize(rt.width) * rt.height * sizeof(uint32_t),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    rt.rayCount = createRayCounts(gpu, deletion, rt.width, rt.height);
 
     const VkShaderStageFlags rt_stages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
                                          VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
@@ -116,6 +122,16 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     writeBuffer(gpu, set, RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshVertices);
     writeBuffer(gpu, set, RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshIndices);
     return rt;
+}
+
+void resizeTarget(const Gpu& gpu, DeletionQueue& deletion, RtScene& rt, Image& target, VkExtent2D size) {
+    target = createImage2D(gpu, deletion, size.width, size.height, target.format,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    rt.width = size.width;
+    rt.height = size.height;
+    rt.rayCount = createRayCounts(gpu, deletion, size.width, size.height);
+    writeStorageImage(gpu, rt.descriptors.set, RT_BINDING_TARGET, target.view);
+    writeBuffer(gpu, rt.descriptors.set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
 }
 
 uint64_t countRays(const Gpu& gpu, const RtScene& scene) {

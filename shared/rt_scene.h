@@ -4,6 +4,7 @@
 #pragma once
 #include "accel.h"
 #include "descriptors.h"
+#include "host_device.h"
 #include "resources.h"
 #include "scene.h"
 
@@ -31,9 +32,17 @@ struct RtScene {
     uint32_t width = 0, height = 0;
 };
 
+// A material as the shaders read it (host_device.h).
+gpu::GpuMaterial toGpuMaterial(const Material& m);
+
 // Uploads everything and writes the descriptor set for `target`.
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
                     const std::vector<uint32_t>& order, int sphereMeshLevel = 0);
+
+// A resized window (viewer.h): re-creates `target` and the per-pixel ray
+// counts at the new size and rebinds both. The device must be idle; the old
+// ones stay with whichever queue destroys them.
+void resizeTarget(const Gpu& gpu, DeletionQueue& deletion, RtScene& rt, Image& target, VkExtent2D size);
 
 // Sum of the per-pixel ray counts of the last frame (host readback).
 uint64_t countRays(const Gpu& gpu, const RtScene& scene);

@@ -341,4 +341,10 @@ Scene toCameraSpace(Scene s) {
 }
 // [end]
 
+nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin) {
+    auto array = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    return {{"position", array(camera.position - origin)}, {"look_at", array(camera.lookAt - origin)},
+            {"up", array(camera.up)}, {"fov_y_deg", camera.fovYDeg}};
+}
+
 }  // namespace rg

@@ -4,6 +4,7 @@
 // the CPU reference renderer uses it as it is.
 #pragma once
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -67,7 +68,7 @@ struct Scene {
     std::vector<Object> objects;
     double scale = 1.0;  // the scene's size (given, or from the objects): secondary-ray offsets scale with it
     bool scaleGiven = false;  // "scale" was in the file (else it is measured from the objects)
-    glm::dvec3 origin{0};     // where this scene's origin lies in the file's coordinates (toCameraSpace)
+    glm::dvec3 origin{0};     // where the file's origin lies in this scene's space (toCameraSpace): file = p - origin
 };
 
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
@@ -82,6 +83,10 @@ Scene loadScene(const std::string& path);
 // scene is (a float's spacing is 0.008 at 1e5). Returns the moved scene;
 // `origin` says where it was.
 Scene toCameraSpace(Scene scene);
+
+// A camera as a scene file's "camera" object, in the file's coordinates
+// (`origin`: Scene::origin of the space the camera is in).
+nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin);
 
 // The chapter's default scene: bin/assets/scenes/<name>.json.
 std::string defaultScenePath(const std::string& name);

@@ -7,7 +7,7 @@
 
 namespace rg {
 
-Window::Window(int width, int height, const std::string& title) {
+Window::Window(int width, int height, const std::string& title) : title_(title) {
     if (!glfwInit()) throw std::runtime_error("GLFW cannot open a window here (no display?); use --headless");
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
@@ -19,8 +19,16 @@ Window::Window(int width, int height, const std::string& title) {
     glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
     });
-    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
-        if (action == GLFW_PRESS) static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_.push_back(key);
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
+        if (action == GLFW_PRESS) static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_.push_back({key, mods});
+    });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+        double x = 0, y = 0;
+        glfwGetCursorPos(w, &x, &y);
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->buttons_.push_back({button, action == GLFW_PRESS, x, y});
+    });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += y;
     });
 }
 
@@ -62,6 +70,7 @@ void Window::createSwapchain(const Gpu& gpu, DeletionQueue& deletion) {
     VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu.physical.handle, surface, &caps));
     if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
         throw std::runtime_error("the surface's images cannot be blit targets (TRANSFER_DST)");
+    // (COLOR_ATTACHMENT, the overlay's usage, every surface supports.)
     uint32_t count = 0;
     VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu.physical.handle, surface, &count, nullptr));
     std::vector<VkSurfaceFormatKHR> formats(count);
@@ -91,7 +100,8 @@ void Window::createSwapchain(const Gpu& gpu, DeletionQueue& deletion) {
         .imageColorSpace = chosen.colorSpace,
         .imageExtent = extent,
         .imageArrayLayers = 1,
-        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT,  // filled by a blit, never rendered to
+        // Filled by a blit; the overlay (overlay.h) then draws on it.
+        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
         .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .preTransform = caps.currentTransform,
         .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,

@@ -31,8 +31,25 @@ public:
     void pollEvents();
     bool resized() const { return resized_; }
     void setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
-    // The keys pressed since the last call (GLFW_KEY_*), oldest first.
-    std::vector<int> takeKeys() { return std::exchange(keys_, {}); }
+    const std::string& initialTitle() const { return title_; }
+    // The keys pressed since the last call, oldest first, with the modifiers
+    // held at the time (Ctrl+Q must not be read after Ctrl was let go).
+    struct KeyPress {
+        int key;   // GLFW_KEY_*
+        int mods;  // GLFW_MOD_*
+    };
+    std::vector<KeyPress> takeKeys() { return std::exchange(keys_, {}); }
+    // Mouse button presses and releases since the last call, oldest first,
+    // with the cursor's position then (a click may start and end in one poll).
+    struct ButtonEvent {
+        int button;  // GLFW_MOUSE_BUTTON_*
+        bool pressed;
+        double x, y;  // window coordinates
+    };
+    std::vector<ButtonEvent> takeButtons() { return std::exchange(buttons_, {}); }
+    // Scroll wheel steps since the last call (up: positive).
+    double takeScroll() { return std::exchange(scroll_, 0.0); }
+    GLFWwindow* handle() const { return window_; }
 
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     VkSwapchainKHR swapchain = VK_NULL_HANDLE;
@@ -45,7 +62,10 @@ private:
     GLFWwindow* window_ = nullptr;
     VkDevice device_ = VK_NULL_HANDLE;
     bool resized_ = false;
-    std::vector<int> keys_;
+    std::vector<KeyPress> keys_;
+    std::vector<ButtonEvent> buttons_;
+    double scroll_ = 0;
+    std::string title_;
 };
 
 }  // namespace rg

@@ -25,7 +25,8 @@ done
 
 packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
-          mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium)
+          mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
+          libimgui-dev xdotool)
 min_mesa=24.1
 
 sudo_cmd=()
@@ -33,7 +34,7 @@ sudo_cmd=()
 
 need_what() {
   echo "RayGlass needs: a C++20 compiler, CMake >= 3.22, the Vulkan loader and headers, glslangValidator,"
-  echo "GLFW 3.3, GLM, stb, nlohmann-json, CLI11, GoogleTest, Xvfb (window tests), jq, gnuplot,"
+  echo "GLFW 3.3, GLM, stb, nlohmann-json, CLI11, GoogleTest, Dear ImGui 1.86 (the overlay), Xvfb and xdotool (window tests),"
   echo "mkdocs with mkdocs-material, pymdownx and KaTeX (the docs site), Chromium + chromedriver + selenium (its tests),"
   echo "and a Vulkan driver with VK_KHR_ray_tracing_pipeline (no GPU: Mesa lavapipe >= $min_mesa)."
 }

@@ -11,6 +11,7 @@
 #include "rt_report.h"
 #include "rt_scene.h"
 #include "scene.h"
+#include "viewer.h"
 
 int main(int argc, char** argv) {
     rg::Options opts;
@@ -46,10 +47,16 @@ int main(int argc, char** argv) {
 
         rg::FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
                            app.deletion);
+        // [region viewer]
+        // In a window: a camera to fly, an overlay with timings, a target that
+        // follows the window's size (shared/viewer.h). Headless: nothing.
+        rg::Viewer viewer(app, opts, scene, rt, target, loop);
         rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
+            viewer.update(cmd, frame);  // records the camera's upload when it moved
             rg::gpu::RtPush push{.frame = frame};
             rg::recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
         });
+        // [end]
         rg::finishRtRun(app, opts, scene, rt, target, times, {.stage = rg::ReferenceStage::Normals});
     });
 }

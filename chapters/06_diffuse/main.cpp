@@ -11,13 +11,13 @@ int main(int argc, char** argv) {
         .description = "RayGlass chapter 06: diffuse light with a shadow ray to every light",
         .title = "RayGlass 06: diffuse",
         .stage = rg::ReferenceStage::Diffuse,
-        .options = [](CLI::App& app, rg::RtChapterSettings& s) {
-            app.add_option("--fixed-epsilon", s.epsilon,
-                           "Experiment: start shadow rays at p + E*n instead of the robust offset")
-                ->check([](const std::string& v) {  // a distance: finite and > 0
+        .options = [](rg::Params& params, rg::RtChapterSettings& s) {
+            params.number("--fixed-epsilon", s.epsilon,
+                          "Experiment: start shadow rays at p + E*n instead of the robust offset (0: robust)", 0, 0.1)
+                .check = [](const std::string& v) {  // a distance: finite and > 0
                     double e = std::strtod(v.c_str(), nullptr);
                     return e > 0 && e < 1e30 ? std::string() : "must be a positive distance, not " + v;
-                });
+                };
         },
     });
 }

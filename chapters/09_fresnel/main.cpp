@@ -34,9 +34,9 @@ int main(int argc, char** argv) {
         .description = "RayGlass chapter 09: Fresnel reflectance, Schlick or exact",
         .title = "RayGlass 09: Fresnel",
         .stage = rg::ReferenceStage::Fresnel,
-        .options = [](CLI::App& app, rg::RtChapterSettings& s) {
-            rg::addDepthOption(app, s, 5);
-            rg::addFresnelOption(app, s);
+        .options = [](rg::Params& params, rg::RtChapterSettings& s) {
+            rg::addDepthOption(params, s, 5);
+            rg::addFresnelOption(params, s);
         },
     });
 }

@@ -9,9 +9,9 @@ int main(int argc, char** argv) {
         .description = "RayGlass chapter 10: refraction through glass, the full ray tree",
         .title = "RayGlass 10: refraction",
         .stage = rg::ReferenceStage::Refraction,
-        .options = [](CLI::App& app, rg::RtChapterSettings& s) {
-            rg::addDepthOption(app, s, 6);
-            rg::addFresnelOption(app, s);
+        .options = [](rg::Params& params, rg::RtChapterSettings& s) {
+            rg::addDepthOption(params, s, 6);
+            rg::addFresnelOption(params, s);
         },
     });
 }

@@ -1,0 +1,332 @@
+#include "viewer.h"
+
+#include "output.h"
+#include "vk_check.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+namespace rg {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The median of the last (up to) 30 values: steady numbers in the overlay.
+double recent(const std::vector<double>& values) {
+    size_t n = std::min<size_t>(values.size(), 30);
+    return median(std::vector<double>(values.end() - n, values.end()));
+}
+
+// Uploads recorded into the frame: the previous frames' shaders must have
+// read the old values first, and this frame's shaders must see the new ones.
+void beforeUpload(VkCommandBuffer cmd) {
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 0, nullptr);  // write after read: execution order is enough
+}
+void afterUpload(VkCommandBuffer cmd) {
+    VkMemoryBarrier written{
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT,
+    };
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1,
+                         &written, 0, nullptr, 0, nullptr);
+}
+}  // namespace
+
+Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target, FrameLoop& loop, Params params)
+    : app_(app), opts_(opts), scene_(scene), rt_(rt), target_(target), loop_(loop), params_(std::move(params)),
+      camera_(scene.camera) {
+    if (!app.window) return;
+    overlay_ = std::make_unique<Overlay>(app.gpu, *app.window);
+    overlayVisible_ = opts.ui;
+    loop.overlay = [this](VkCommandBuffer cmd, uint32_t image) {
+        if (overlayVisible_) overlay_->record(cmd, image);
+    };
+    loop.swapchainRecreated = [this] { resized(); };
+    lastUpdate_ = lastTitle_ = lastRays_ = Clock::now();
+    std::printf("Window: left drag orbits, right drag pans, wheel zooms, click picks; W/A/S/D/Q/E fly, R resets, "
+                "C prints the camera, H overlay, F2 screenshot, Esc quits\n");
+}
+
+Viewer::~Viewer() {
+    if (!app_.window) return;
+    vkDeviceWaitIdle(app_.gpu.device);  // before the resized target and the overlay go
+    loop_.overlay = nullptr;
+    loop_.swapchainRecreated = nullptr;
+}
+
+// [region viewer_update]
+uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
+    if (!app_.window) return frame;  // headless: one fixed view, one long average
+    double seconds = std::min(0.1, secondsSince(lastUpdate_));
+    lastUpdate_ = Clock::now();
+    handleKeys(frame);
+    handleMouse();
+    handleFlying(seconds);
+    if (overlayVisible_) {
+        if (secondsSince(lastRays_) > 1) measureRays();
+        drawOverlay(frame);
+    }
+
+    bool upload = cameraDirty_ || materialDirty_;
+    if (upload) beforeUpload(cmd);
+    if (cameraDirty_) {  // the two matrices at the start of RtCamera (host_device.h)
+        scene_.camera = camera_.camera();  // the report and --reference see this view
+        glm::mat4 matrices[2];
+        cameraMatrices(scene_.camera, double(rt_.width) / rt_.height, matrices[0], matrices[1]);
+        vkCmdUpdateBuffer(cmd, rt_.camera.handle, 0, sizeof matrices, matrices);
+    }
+    if (materialDirty_) {
+        gpu::GpuMaterial m = toGpuMaterial(scene_.materials[size_t(selectedMaterial_)]);
+        vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_), sizeof m, &m);
+    }
+    if (upload) afterUpload(cmd);
+    if (upload || changed_) firstFrame_ = frame;  // a new picture: restart the average
+    cameraDirty_ = materialDirty_ = changed_ = false;
+
+    if (secondsSince(lastTitle_) > 0.25 && !loop_.times().gpuMs.empty()) {
+        char title[256];
+        std::snprintf(title, sizeof title, "%s - GPU %.2f ms, frame %.2f ms", app_.window->initialTitle().c_str(),
+                      recent(loop_.times().gpuMs), recent(loop_.times().cpuMs));
+        app_.window->setTitle(title);
+        lastTitle_ = Clock::now();
+    }
+    return frame - firstFrame_;
+}
+// [end]
+
+void Viewer::handleKeys(uint32_t frame) {
+    bool typing = overlayVisible_ && overlay_->wantsKeyboard();  // into an overlay field
+    for (auto [key, mods] : app_.window->takeKeys()) {
+        if (key == GLFW_KEY_ESCAPE || (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)))
+            glfwSetWindowShouldClose(app_.window->handle(), GLFW_TRUE);
+        if (typing) continue;
+        if (key == GLFW_KEY_R) {
+            camera_.reset();
+            cameraDirty_ = true;
+        } else if (key == GLFW_KEY_C) {  // a block to paste into the scene file
+            std::printf("\"camera\": %s\n", cameraToJson(camera_.camera(), scene_.origin).dump().c_str());
+            std::fflush(stdout);
+        } else if (key == GLFW_KEY_H) {
+            overlayVisible_ = !overlayVisible_;
+        } else if (key == GLFW_KEY_F2) {
+            screenshot(frame);
+        }
+    }
+}
+
+void Viewer::handleMouse() {
+    GLFWwindow* w = app_.window->handle();
+    bool overlayHasMouse = overlayVisible_ && overlay_->wantsMouse();
+    double scroll = app_.window->takeScroll();
+    if (scroll != 0 && !overlayHasMouse) {
+        camera_.zoom(scroll);
+        cameraDirty_ = true;
+    }
+    // Presses and releases as events: a quick click can begin and end
+    // between two frames. A press on the overlay is the overlay's.
+    for (const Window::ButtonEvent& e : app_.window->takeButtons()) {
+        if (e.pressed && dragButton_ < 0 && !overlayHasMouse) {
+            dragButton_ = e.button;
+            pressX_ = lastX_ = e.x;
+            pressY_ = lastY_ = e.y;
+            dragMoved_ = false;
+        } else if (!e.pressed && e.button == dragButton_) {
+            if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);  // a click, not a drag
+            dragButton_ = -1;
+        }
+    }
+    if (dragButton_ < 0) return;
+    double x = 0, y = 0;
+    glfwGetCursorPos(w, &x, &y);
+    dragMoved_ = dragMoved_ || std::abs(x - pressX_) + std::abs(y - pressY_) > 3;
+    if (dragMoved_ && (x != lastX_ || y != lastY_)) {
+        if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT) camera_.orbit(x - lastX_, y - lastY_);
+        else camera_.pan(x - lastX_, y - lastY_, app_.window->extent.height);
+        cameraDirty_ = true;
+    }
+    lastX_ = x;
+    lastY_ = y;
+}
+
+void Viewer::handleFlying(double seconds) {
+    GLFWwindow* w = app_.window->handle();
+    if ((overlayVisible_ && overlay_->wantsKeyboard()) || glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS)
+        return;
+    auto held = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0 : 0.0; };
+    glm::dvec3 move{held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q),
+                    held(GLFW_KEY_W) - held(GLFW_KEY_S)};
+    if (move == glm::dvec3(0)) return;
+    // Half the distance to the look-at point per second (it moves along, so
+    // the speed stays): slow close up, fast in a wide view. Shift: 4x.
+    const Camera& c = camera_.camera();
+    double speed = 0.5 * glm::length(c.lookAt - c.position) * (held(GLFW_KEY_LEFT_SHIFT) ? 4 : 1);
+    camera_.fly(move * speed * seconds);
+    cameraDirty_ = true;
+}
+
+void Viewer::pick(double x, double y) {
+    if (!picker_) picker_.emplace(scene_);
+    int w = 0, h = 0;
+    glfwGetWindowSize(app_.window->handle(), &w, &h);
+    double px = x * rt_.width / std::max(1, w), py = y * rt_.height / std::max(1, h);  // target pixels
+    glm::dvec3 direction = camera_.rayDirection(px, py, rt_.width, rt_.height);
+    ReferenceHit hit = picker_->trace(camera_.camera().position, direction, picker_->eyeTmin(), 1e30);
+    selectedMaterial_ = hit.t < 0 ? -1 : int(scene_.objects[hit.object].material);
+}
+
+void Viewer::drawOverlay(uint32_t frame) {
+    overlay_->beginFrame();
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin(app_.window->initialTitle().c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    const FrameTimes& times = loop_.times();
+    if (!times.gpuMs.empty()) {
+        double frameMs = recent(times.cpuMs);
+        ImGui::Text("GPU %.2f ms   frame (CPU) %.2f ms   %.1f fps", recent(times.gpuMs), frameMs,
+                    frameMs > 0 ? 1000 / frameMs : 0.0);
+    }
+    ImGui::Text("%.1f Mrays/s (%llu rays a frame)", mraysPerS_, (unsigned long long)raysPerFrame_);
+    ImGui::Text("%u x %u, %u frames of this picture", rt_.width, rt_.height, frame - firstFrame_ + 1);
+    ImGui::PushItemWidth(140);
+    if (!params_.all().empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
+        parameterControls();
+    if (ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) materialControls();
+    ImGui::PopItemWidth();
+    ImGui::TextDisabled("H hides this, F2 saves, Esc quits");
+    ImGui::End();
+}
+
+// One control per declared parameter (params.h): the command line's names,
+// ranges and choices, so the two always agree.
+void Viewer::parameterControls() {
+    for (const Param& p : params_.all()) {
+        ImGui::BeginDisabled(!p.live);
+        const char* label = p.label.c_str();
+        bool edited = false;
+        switch (p.kind) {
+        case Param::Kind::Integer:
+            edited = ImGui::SliderInt(label, p.integer, int(p.min), int(p.max), "%d",
+                                      ImGuiSliderFlags_AlwaysClamp |
+                                          (p.max - p.min > 64 ? ImGuiSliderFlags_Logarithmic : 0));
+            break;
+        case Param::Kind::Number:
+            edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), "%.3g",
+                                        ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+            break;
+        case Param::Kind::Choice: {
+            std::vector<const char*> names;
+            for (const std::string& c : p.choices) names.push_back(c.c_str());
+            edited = ImGui::Combo(label, p.integer, names.data(), int(names.size()));
+            break;
+        }
+        case Param::Kind::Toggle:
+            edited = ImGui::Checkbox(label, p.toggle);
+            break;
+        }
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("%s %s%s", p.flag.c_str(), p.help.c_str(), p.live ? "" : " (read at start only)");
+        changed_ = changed_ || edited;
+    }
+}
+
+void Viewer::materialControls() {
+    std::vector<const char*> names;
+    for (const Material& m : scene_.materials) names.push_back(m.name.c_str());
+    ImGui::Combo("material", &selectedMaterial_, names.data(), int(names.size()));
+    if (selectedMaterial_ < 0) {
+        ImGui::TextDisabled("click an object to pick its material");
+        return;
+    }
+    Material& m = scene_.materials[size_t(selectedMaterial_)];
+    bool edited = false;
+    auto color = [&](const char* label, glm::dvec3& value) {
+        float v[3] = {float(value.x), float(value.y), float(value.z)};
+        if (ImGui::ColorEdit3(label, v, ImGuiColorEditFlags_Float)) {
+            value = glm::dvec3(v[0], v[1], v[2]);
+            edited = true;
+        }
+    };
+    auto number = [&](const char* label, double& value, float min, float max, ImGuiSliderFlags flags = 0) {
+        float v = float(value);
+        if (ImGui::SliderFloat(label, &v, min, max, "%.3f", flags | ImGuiSliderFlags_AlwaysClamp)) {
+            value = v;
+            edited = true;
+        }
+    };
+    color("ka", m.ka);
+    color("kd", m.kd);
+    color("ks", m.ks);
+    number("shininess", m.shininess, 1, 4096, ImGuiSliderFlags_Logarithmic);
+    number("reflectivity", m.reflectivity, 0, 1);
+    number("transmission", m.transmission, 0, 1);
+    number("ior", m.ior, 1, 3);
+    number("f0", m.f0, 0, 1);
+    number("roughness", m.roughness, 0, 1);
+    materialDirty_ = materialDirty_ || edited;
+}
+
+// [region viewer_resize]
+// The swapchain was re-created (the device is idle): the ray traced image
+// follows the window's size, so the blit copies it 1:1.
+void Viewer::resized() {
+    overlay_->swapchainRecreated();
+    VkExtent2D size = app_.window->extent;
+    if (size.width == 0 || size.height == 0 ||
+        (size.width == target_.extent.width && size.height == target_.extent.height))
+        return;
+    resizedTarget_.flush();  // the previous resize's target and ray counts
+    resizeTarget(app_.gpu, resizedTarget_, rt_, target_, size);
+    loop_.prepareTarget();
+    opts_.width = int(size.width);  // the report and --reference use the new size
+    opts_.height = int(size.height);
+    cameraDirty_ = true;            // a new aspect ratio
+    std::printf("resized: the target is now %ux%u\n", size.width, size.height);
+    std::fflush(stdout);
+}
+// [end]
+
+void Viewer::measureRays() {
+    VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the counts of finished frames only
+    raysPerFrame_ = countRays(app_.gpu, rt_);
+    double ms = loop_.times().gpuMs.empty() ? 0 : recent(loop_.times().gpuMs);
+    mraysPerS_ = ms > 0 ? double(raysPerFrame_) / (ms * 1e-3) / 1e6 : 0;
+    lastRays_ = Clock::now();
+}
+
+// F2: the ray traced image as it is (never the overlay) and a report that
+// says how to get it again: camera, size, parameters.
+void Viewer::screenshot(uint32_t frame) {
+    VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the last finished frame is what the window shows
+    FloatImage image = readImage(app_.gpu, target_, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
+    std::string stem;
+    do stem = opts_.chapter + "_shot" + std::to_string(++screenshots_);
+    while (std::filesystem::exists(stem + ".png"));
+    writePng(stem + ".png", image);
+    nlohmann::json report = makeReport(opts_, app_.gpu, loop_.times());
+    report["scene"] = scene_.path;
+    report["camera"] = cameraToJson(camera_.camera(), scene_.origin);
+    report["accumulated_frames"] = frame - firstFrame_;
+    if (selectedMaterial_ >= 0) report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
+    for (const Param& p : params_.all()) {
+        nlohmann::json& value = report["parameters"][p.flag.substr(2)];
+        switch (p.kind) {
+        case Param::Kind::Integer: value = *p.integer; break;
+        case Param::Kind::Number: value = *p.number; break;
+        case Param::Kind::Choice: value = p.choices[size_t(*p.integer)]; break;
+        case Param::Kind::Toggle: value = *p.toggle != p.inverted; break;
+        }
+    }
+    writeReport(stem + ".json", report);
+    std::printf("F2: wrote %s.png and %s.json\n", stem.c_str(), stem.c_str());
+    std::fflush(stdout);
+}
+
+}  // namespace rg

@@ -1,0 +1,78 @@
+// The window's interaction for the ray tracing chapters (04-11), in one
+// place: the camera (orbit, pan, zoom, fly), the overlay with timings, the
+// chapter's parameters and the picked object's material, the keys, and a
+// target that follows the window's size. Headless runs get none of it.
+//
+//   mouse: left drag orbits, right or middle drag pans, wheel zooms, left click picks
+//   keys:  W/A/S/D fly, Q/E down/up (Shift: faster), R reset, C print camera,
+//          H overlay, F2 screenshot + report, Esc or Ctrl+Q quit
+#pragma once
+#include "app.h"
+#include "camera_control.h"
+#include "frame_loop.h"
+#include "overlay.h"
+#include "params.h"
+#include "reference.h"
+#include "rt_scene.h"
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+namespace rg {
+
+class Viewer {
+public:
+    // Hooks into `loop` (overlay, resize). Changes it makes go to `scene`
+    // (camera, materials), `opts` (size) and the values `params` point to,
+    // so the end of the run (report, --reference) sees what is on screen.
+    Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target, FrameLoop& loop, Params params = {});
+    ~Viewer();
+
+    // Call first when recording a frame: applies the input, records the
+    // uploads it needs (camera, material) into `cmd`, and returns how many
+    // frames ago the picture last changed (0: this frame starts a new
+    // progressive average). Headless: returns `frame`.
+    uint32_t update(VkCommandBuffer cmd, uint32_t frame);
+
+private:
+    void handleKeys(uint32_t frame);
+    void handleMouse();
+    void handleFlying(double seconds);
+    void drawOverlay(uint32_t frame);
+    void parameterControls();
+    void materialControls();
+    void resized();
+    void screenshot(uint32_t frame);
+    void measureRays();
+    void pick(double x, double y);
+
+    App& app_;
+    Options& opts_;
+    Scene& scene_;
+    RtScene& rt_;
+    Image& target_;
+    FrameLoop& loop_;
+    Params params_;
+    CameraControl camera_;
+    std::unique_ptr<Overlay> overlay_;
+    bool overlayVisible_ = true;
+    DeletionQueue resizedTarget_;  // the target and ray counts of the last resize
+    std::optional<ReferenceRenderer> picker_;  // one CPU ray per click, built at the first click
+
+    uint32_t firstFrame_ = 0;  // of the current progressive average
+    bool changed_ = false;     // view or parameter changed: restart the average
+    bool cameraDirty_ = true;  // upload the camera's matrices
+    int selectedMaterial_ = -1;
+    bool materialDirty_ = false;
+    // Mouse drags: where the button went down, whether ImGui had the mouse then.
+    int dragButton_ = -1;
+    double lastX_ = 0, lastY_ = 0, pressX_ = 0, pressY_ = 0;
+    bool dragMoved_ = false;
+    std::chrono::steady_clock::time_point lastUpdate_, lastTitle_, lastRays_;
+    double mraysPerS_ = 0;
+    uint64_t raysPerFrame_ = 0;
+    int screenshots_ = 0;
+};
+
+}  // namespace rg

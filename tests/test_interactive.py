@@ -1,0 +1,310 @@
+#!/usr/bin/python3
+"""A ray tracing chapter's window, driven as a user would (issue 10).
+
+Starts its own Xvfb (whose framebuffer file is the screenshot), runs the
+chapter with the validation layer, and moves the mouse and presses keys with
+xdotool. Standard library only.
+
+    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--size WxH]
+
+Every chapter: a drag changes the picture, R brings the first one back, Esc
+ends the process with exit 0 and no validation message. --full (chapter
+10: it has a depth parameter) adds: a right drag pans; F2's report has the
+moved camera; the overlay is in the window but not in the F2 PNG, which
+equals the headless PNG; a click picks a material; the overlay's depth
+slider changes the parameter and the picture; a resize re-creates the target.
+"""
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+EXE, OUT, SCENE = (os.path.abspath(a) for a in sys.argv[1:4])
+FULL = "--full" in sys.argv[4:]
+NAME = os.path.basename(EXE)
+W, H = (320, 180) if FULL else (160, 90)
+if "--size" in sys.argv:
+    W, H = map(int, sys.argv[sys.argv.index("--size") + 1].split("x"))
+BLUE_SPHERE = (203 * W // 320, 125 * H // 180)  # where the default scene's small blue sphere is
+failures = []
+
+
+def check(ok, what):
+    print(("ok:   " if ok else "FAIL: ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def start_xvfb(fbdir):
+    for display in range(90, 140):
+        if os.path.exists(f"/tmp/.X11-unix/X{display}") or os.path.exists(f"/tmp/.X{display}-lock"):
+            continue
+        proc = subprocess.Popen(["Xvfb", f":{display}", "-screen", "0", "800x600x24", "-fbdir", fbdir,
+                                 "-nolisten", "tcp"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        for _ in range(50):
+            if os.path.exists(os.path.join(fbdir, "Xvfb_screen0")) and os.path.exists(f"/tmp/.X11-unix/X{display}"):
+                return proc, f":{display}"
+            if proc.poll() is not None:
+                break
+            time.sleep(0.1)
+        proc.kill()
+    sys.exit("no free X display for Xvfb")
+
+
+def xdotool(*args):
+    return subprocess.run(["xdotool", *map(str, args)], env=ENV, check=True, capture_output=True,
+                          text=True).stdout.strip()
+
+
+def screen(fbdir):
+    """The Xvfb framebuffer (XWD format) as (width, height, rows of RGB tuples)."""
+    with open(os.path.join(fbdir, "Xvfb_screen0"), "rb") as f:
+        data = f.read()
+    header = struct.unpack(">25I", data[:100])
+    size, width, height, bpp, stride, ncolors = header[0], header[4], header[5], header[11], header[12], header[19]
+    assert bpp == 32, bpp
+    start = size + 12 * ncolors
+    rows = []
+    for y in range(height):
+        row = data[start + y * stride:start + y * stride + 4 * width]
+        rows.append([(row[4 * x + 2], row[4 * x + 1], row[4 * x]) for x in range(width)])  # B G R X
+    return width, height, rows
+
+
+def window_shot(box):
+    x0, y0, w, h = box
+    _, _, rows = screen(FBDIR)
+    return [r[x0:x0 + w] for r in rows[y0:y0 + h]]
+
+
+def diff(a, b, region=None):
+    """Mean absolute difference (0-255) over a region (x0, y0, x1, y1) of two shots."""
+    x0, y0, x1, y1 = region or (0, 0, len(a[0]), len(a))
+    total = n = 0
+    for y in range(y0, y1):
+        for x in range(x0, x1):
+            total += sum(abs(p - q) for p, q in zip(a[y][x], b[y][x]))
+            n += 3
+    return total / max(n, 1)
+
+
+def read_png_rgb(path):
+    """Decodes the chapters' own 8-bit RGB PNGs (zlib, filter per row)."""
+    import zlib
+    with open(path, "rb") as f:
+        data = f.read()
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, color = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and color == 2, (depth, color)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride, rows, prev = zlib.decompress(idat), 3 * width, [], bytearray(3 * width)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], prev[i - 3] if i >= 3 else 0
+            if kind == 1: line[i] = (line[i] + a) & 255
+            elif kind == 2: line[i] = (line[i] + b) & 255
+            elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[3 * x:3 * x + 3]) for x in range(width)])
+        prev = line
+    return rows
+
+
+def write_png(path, rows):
+    """The window's pixels as an 8-bit RGB PNG (saved beside the test's output)."""
+    import zlib
+    raw = b"".join(b"\0" + bytes(c for pixel in row for c in pixel) for row in rows)
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", len(rows[0]), len(rows), 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def shot_when(condition, what, seconds=20):
+    """Screenshots until `condition(shot)` holds (a loaded machine renders
+    slowly: no fixed sleeps); records a failure after `seconds`."""
+    end = time.time() + seconds
+    while True:
+        shot = window_shot(BOX)
+        if condition(shot):
+            return shot
+        if time.time() > end:
+            check(False, what + " (timed out)")
+            return shot
+        time.sleep(0.3)
+
+
+def stable_shot(seconds=60):
+    """A screenshot once the window shows a picture and two in a row agree."""
+    previous = window_shot(BOX)
+    end = time.time() + seconds
+    while time.time() < end:
+        time.sleep(0.4)
+        shot = window_shot(BOX)
+        if diff(previous, shot) < 0.3 and diff(shot, [[(0, 0, 0)] * W] * H) > 5:
+            return shot
+        previous = shot
+    check(False, "the picture settles")
+    return previous
+
+
+def drag(box, dx, dy, button=1):
+    x0, y0, w, h = box
+    cx, cy = x0 + w * 3 // 4, y0 + h * 3 // 4  # away from the overlay (top left)
+    xdotool("mousemove", cx, cy)
+    time.sleep(0.3)
+    xdotool("mousedown", button)
+    time.sleep(0.3)
+    for i in range(1, 6):
+        xdotool("mousemove", cx + dx * i // 5, cy + dy * i // 5)
+        time.sleep(0.15)
+    xdotool("mouseup", button)
+    time.sleep(0.2)
+
+
+def key(box, name):
+    xdotool("mousemove", box[0] + box[2] * 3 // 4, box[1] + box[3] * 3 // 4)  # focus follows the pointer
+    xdotool("key", name)
+
+
+def wait_for(text, log, seconds=10):
+    end = time.time() + seconds
+    while time.time() < end:
+        with open(log) as f:
+            if text in f.read():
+                return True
+        time.sleep(0.1)
+    return False
+
+
+shutil.rmtree(OUT, ignore_errors=True)  # F2 numbers its files after those already there
+os.makedirs(OUT)
+FBDIR = tempfile.mkdtemp(prefix="rg-xvfb-")
+xvfb, display = start_xvfb(FBDIR)
+ENV = dict(os.environ, DISPLAY=display)
+ENV.pop("WAYLAND_DISPLAY", None)
+log = os.path.join(OUT, "stdout.txt")
+args = [EXE, "--validation", "--width", str(W), "--height", str(H), "--no-ui", "--output", "window.png"]
+with open(log, "w") as out:
+    chapter = subprocess.Popen(args, cwd=OUT, env=ENV, stdout=out, stderr=subprocess.STDOUT)
+try:
+    wid = xdotool("search", "--sync", "--onlyvisible", "--name", "RayGlass")
+    geometry = dict(line.split("=") for line in xdotool("getwindowgeometry", "--shell", wid).split())
+    box = BOX = (int(geometry["X"]), int(geometry["Y"]), W, H)
+    first = stable_shot()
+    check(diff(first, [[(0, 0, 0)] * W] * H) > 5, "the window shows a picture")
+    def changed(s, region=None):
+        return diff(first, s, region) > 2
+    def restored(s):
+        return diff(first, s) < 0.5
+
+    drag(box, 60, 20)
+    dragged = shot_when(changed, "a left drag changes the picture")
+    check(changed(dragged), f"a left drag changes the picture (mean difference {diff(first, dragged):.1f})")
+
+    key(box, "r")
+    reset = shot_when(restored, "R brings the first picture back")
+    check(restored(reset), f"R brings the first picture back (mean difference {diff(first, reset):.2f})")
+
+    xdotool("mousemove", box[0] + W * 3 // 4, box[1] + H * 3 // 4)
+    xdotool("click", "--repeat", 3, "--delay", 100, 4)  # wheel up: zoom in
+    zoomed = shot_when(changed, "the wheel zooms")
+    check(changed(zoomed), f"the wheel zooms (mean difference {diff(first, zoomed):.1f})")
+    key(box, "r")
+    shot_when(restored, "R after zooming")
+    xdotool("keydown", "w")  # fly forward for a moment
+    time.sleep(0.5)
+    xdotool("keyup", "w")
+    flown = shot_when(changed, "W flies forward")
+    check(changed(flown), f"W flies forward (mean difference {diff(first, flown):.1f})")
+    key(box, "c")
+    check(wait_for('"camera": {"fov_y_deg"', log), "C prints the camera as a scene-file block")
+    key(box, "r")
+    shot_when(restored, "R after flying")
+
+    if FULL:
+        drag(box, -50, 0, button=3)  # right drag: pan
+        panned = shot_when(changed, "a right drag pans")
+        check(changed(panned), f"a right drag pans (mean difference {diff(first, panned):.1f})")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot1.png", log), "F2 writes a screenshot")
+        shot = json.load(open(os.path.join(OUT, f"{NAME}_shot1.json")))
+        scene_camera = json.load(open(SCENE))["camera"]
+        moved = max(abs(a - b) for a, b in zip(shot["camera"]["position"], scene_camera["position"]))
+        check(moved > 0.01, f"F2's report has the moved camera ({shot['camera']['position']})")
+        check(shot["width"] == W and shot["height"] == H, "F2's report has the image size")
+
+        key(box, "r")
+        hidden = shot_when(restored, "R after panning")
+        corner = (0, 0, W // 3, H // 3)  # where the overlay opens
+        right = (W * 2 // 3, 0, W, H)    # beside it, for a parameter's effect
+        check(diff(first, hidden, corner) < 0.5, "--no-ui starts without the overlay")
+        xdotool("mousemove", box[0] + BLUE_SPHERE[0], box[1] + BLUE_SPHERE[1])
+        xdotool("click", 1)  # a quick click, overlay hidden: picks the sphere's material
+        key(box, "h")
+        shown = shot_when(lambda s: diff(hidden, s, corner) > 5, "H shows the overlay")
+        time.sleep(1)
+        shown = window_shot(box)  # the overlay fully drawn
+        write_png(os.path.join(OUT, "window_overlay.png"), shown)
+        check(diff(hidden, shown, corner) > 5, f"H shows the overlay (top left differs by {diff(hidden, shown, corner):.1f})")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot2.png", log), "F2 with the overlay shown")
+        picked = json.load(open(os.path.join(OUT, f"{NAME}_shot2.json")))
+        check(picked.get("selected_material") == "blue", f"a click picks the blue sphere's material ({picked.get('selected_material')})")
+        headless = os.path.join(OUT, "headless.png")
+        subprocess.run([EXE, "--headless", "--width", str(W), "--height", str(H), "--frames", "1", "--output",
+                        headless], cwd=OUT, check=True, capture_output=True)
+        f2 = read_png_rgb(os.path.join(OUT, f"{NAME}_shot2.png"))
+        png = read_png_rgb(headless)
+        check(diff(f2, png) < 0.01, f"F2's PNG has no overlay: it equals the headless PNG ({diff(f2, png):.3f})")
+        check(diff(png, shown, corner) > 5, "the headless PNG differs from the window where the overlay is")
+
+        # The overlay's "depth" slider (ImGui's fixed layout: its row 141 px
+        # down, the slider from x = 16): a click at its left end sets 0.
+        xdotool("mousemove", box[0] + 18, box[1] + 141)
+        xdotool("click", 1)
+        depth0 = shot_when(lambda s: diff(shown, s, right) > 2, "depth 0 changes the picture live")
+        write_png(os.path.join(OUT, "window_depth0.png"), depth0)
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot3.png", log), "F2 after changing a parameter in the overlay")
+        changed3 = json.load(open(os.path.join(OUT, f"{NAME}_shot3.json")))
+        check(changed3["parameters"]["depth"] == 0, f"the overlay's depth slider set depth {changed3['parameters']['depth']}")
+        f3 = read_png_rgb(os.path.join(OUT, f"{NAME}_shot3.png"))
+        check(diff(f2, f3, right) > 2, f"depth 0 changes the picture live ({diff(f2, f3, right):.1f})")
+
+        xdotool("windowsize", wid, 400, 240)
+        check(wait_for("resized: the target is now 400x240", log), "a resize re-creates the target at 400x240")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot4.png", log), "F2 after the resize")
+        resized = json.load(open(os.path.join(OUT, f"{NAME}_shot4.json")))
+        check((resized["width"], resized["height"]) == (400, 240), "the report says 400x240 after the resize")
+
+    key(box, "Escape")
+    try:
+        code = chapter.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        chapter.kill()
+        code = None
+    check(code == 0, f"Esc ends the process with exit 0 (got {code}; --validation fails on any message)")
+finally:
+    if chapter.poll() is None:
+        chapter.kill()
+    xvfb.kill()
+    print(open(log).read())
+sys.exit(1 if failures else 0)
