@@ -217,7 +217,9 @@ void Viewer::parameterControls() {
                                           (p.max - p.min > 64 ? ImGuiSliderFlags_Logarithmic : 0));
             break;
         case Param::Kind::Number:
-            edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), "%.3g",
+            // A log slider from 0 reaches down to 10^-(digits after the point):
+            // chapter 06's epsilon needs 1e-9 and below.
+            edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), p.min == 0 ? "%.10f" : "%.3g",
                                         ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
             break;
         case Param::Kind::Choice: {
