@@ -5,6 +5,7 @@
 #include "vk_check.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -246,6 +247,42 @@ std::vector<uint32_t> mortonOrder(const Scene& scene) {
 }
 // [end]
 
+// [region sphere_group]
+SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
+                             const std::vector<uint32_t>& order, uint32_t firstObject) {
+    SphereGroup group{.firstObject = firstObject};
+    std::vector<VkAabbPositionsKHR> boxes;
+    for (uint32_t i : order) {  // Morton order: neighbours in the list are neighbours in space
+        const Object& o = scene.objects[i];
+        if (!inSphereGroup(o)) continue;
+        // Rounded outwards to float, so that no part of the sphere is outside its box.
+        auto down = [](double v) { return std::nextafter(float(v), -INFINITY); };
+        auto up = [](double v) { return std::nextafter(float(v), INFINITY); };
+        glm::dvec3 lo = o.center - o.radius, hi = o.center + o.radius;
+        boxes.push_back({down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)});
+        group.objects.push_back(i);
+    }
+    group.stats = {.name = "sphere_group", .geometry = "aabbs"};
+    if (boxes.empty()) return group;
+    DeletionQueue inputs;  // the boxes are not needed after the build
+    Buffer boxBuffer = createDeviceBuffer(gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
+                                          VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    VkAccelerationStructureGeometryKHR aabbs{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
+        .geometry = {.aabbs = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR,
+            .data = {.deviceAddress = boxBuffer.address},
+            .stride = sizeof(VkAabbPositionsKHR),
+        }},
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+    };
+    group.blas = buildCompactedBlas(gpu, deletion, aabbs, uint32_t(boxes.size()), group.stats);
+    return group;
+}
+// [end]
+
 std::vector<uint32_t> fileOrder(const Scene& scene) {
     std::vector<uint32_t> order(scene.objects.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -254,10 +291,21 @@ std::vector<uint32_t> fileOrder(const Scene& scene) {
 
 // [region make_instances]
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& order) {
+                                                              const std::vector<uint32_t>& order,
+                                                              const SphereGroup* group) {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
+    if (group && !group->objects.empty())
+        instances.push_back({
+            .transform = toVkTransform(glm::dmat4(1.0)),  // its boxes are where the spheres are
+            .instanceCustomIndex = group->firstObject,
+            .mask = 0xFFu,
+            .instanceShaderBindingTableRecordOffset = 1u,  // the analytic sphere's hit group
+            .flags = 0,
+            .accelerationStructureReference = group->blas.address,
+        });
     for (uint32_t i : order) {
         const Object& o = scene.objects[i];
+        if (group && inSphereGroup(o)) continue;  // a box of the group
         bool sphere = o.type == ShapeType::Sphere;
         bool mesh = sphere && shapes.meshSphere.handle != VK_NULL_HANDLE;  // --sphere-mesh
         instances.push_back({

@@ -55,8 +55,23 @@ inline std::vector<uint32_t> instanceOrder(const Scene& scene, bool keepFileOrde
 // object's index, which the shaders use), pointing at the quad or sphere
 // BLAS with the object's transform. Hit group offset: 0 for triangles, 1 for
 // spheres, 2 for the sphere mesh (chapter 04's SBT).
+// The thesis's other layout (2.2.1: spatially close geometry belongs in one
+// BLAS): every static, visible sphere becomes one box of a single BLAS of
+// AABBs, in `order`, placed by one instance with the identity transform.
+// Box k's sphere is GPU object firstObject + k (gl_PrimitiveID = k).
+struct SphereGroup {
+    AccelerationStructure blas;
+    std::vector<uint32_t> objects;  // box k holds scene object objects[k]
+    uint32_t firstObject = 0;       // its custom index: where its entries start in the GPU's object array
+    BlasStats stats;
+};
+inline bool inSphereGroup(const Object& o) { return o.type == ShapeType::Sphere && !o.moving && !o.hidden; }
+SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
+                             const std::vector<uint32_t>& order, uint32_t firstObject);
+
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& order);
+                                                              const std::vector<uint32_t>& order,
+                                                              const SphereGroup* group = nullptr);
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m);
 
 struct Tlas {

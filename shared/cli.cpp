@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 
 namespace rg {
 
@@ -19,6 +20,11 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
     if (!reference) return;
     app.add_flag("--reference", opts.reference, "Also render the CPU double-precision reference and report the error");
     app.add_flag("!--no-ui", opts.ui, "Start the window without its overlay (H shows it)");
+    app.add_option("--layout", opts.groupSpheres,
+                   "Acceleration structures: grouped (the static spheres in one BLAS of boxes, the default) "
+                   "or instances (one per object)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"instances", false}, {"grouped", true}},
+                                            CLI::ignore_case));
 }
 
 std::optional<int> parseCommandLine(int argc, char** argv, const std::string& chapter,

@@ -72,7 +72,7 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RT_BINDING_TLAS 0       // the scene's top-level acceleration structure
 #define RT_BINDING_TARGET 1     // storage image, rgba32f, linear radiance
 #define RT_BINDING_CAMERA 2     // uniform RtCamera
-#define RT_BINDING_OBJECTS 3    // GpuObject[], indexed by gl_InstanceCustomIndexEXT
+#define RT_BINDING_OBJECTS 3    // GpuObject[], indexed by gl_InstanceCustomIndexEXT + gl_PrimitiveID
 #define RT_BINDING_MATERIALS 4  // GpuMaterial[]
 #define RT_BINDING_LIGHTS 5     // GpuLight[]
 #define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
@@ -105,12 +105,14 @@ struct RtCamera {
 RG_SIZE(RtCamera, 224);
 
 struct GpuObject {
+    vec4 sphere;    // centre, radius in its instance's object space: (0,0,0,1)
+                    // for an instance of the unit sphere, the real one in a sphere group
     uint shape;     // SHAPE_*
     uint material;  // index into materials
     uint pad0;
     uint pad1;
 };
-RG_SIZE(GpuObject, 16);
+RG_SIZE(GpuObject, 32);
 
 // [region material]
 struct GpuMaterial {

@@ -23,6 +23,19 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
     uint64_t nonFinite = 0;
     for (float v : image.rgba) nonFinite += !std::isfinite(v);
     report["non_finite_values"] = nonFinite;
+    nlohmann::json& accel = report["acceleration"];
+    accel["layout"] = rt.group.objects.empty() ? "instances" : "grouped";
+    accel["tlas_instances"] = rt.tlas.count;
+    accel["tlas_build_ms"] = rt.tlas.buildMs;
+    VkDeviceSize blasBytes = rt.group.stats.compactBytes;
+    double blasMs = rt.group.stats.buildMs + rt.group.stats.compactMs;
+    for (const BlasStats& s : rt.shapes.stats) {
+        blasBytes += s.compactBytes;
+        blasMs += s.buildMs + s.compactMs;
+    }
+    accel["blas_bytes"] = blasBytes;  // compacted
+    accel["blas_build_ms"] = blasMs;
+    accel["tlas_bytes"] = rt.tlas.buildBytes;
     std::printf("GPU median %.3f ms over %zu frames, %llu rays per frame, %.1f Mrays/s\n", medianMs,
                 times.gpuMs.size(), (unsigned long long)rays, report["mrays_per_s"].get<double>());
 

@@ -59,12 +59,15 @@ gpu::GpuMaterial toGpuMaterial(const Material& m) {
 }
 
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    const std::vector<uint32_t>& order, int sphereMeshLevel) {
+                    const std::vector<uint32_t>& order, int sphereMeshLevel, bool groupSpheres) {
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
     rt.shapes = buildUnitShapes(gpu, deletion, sphereMeshLevel);
-    rt.instances = makeInstances(scene, rt.shapes, order);
+    bool grouped = groupSpheres && sphereMeshLevel == 0;  // a sphere mesh is instanced
+    if (grouped)  // its entries go after the scene's own objects in the GPU's array
+        rt.group = buildSphereGroup(gpu, deletion, scene, order, uint32_t(scene.objects.size()));
+    rt.instances = makeInstances(scene, rt.shapes, order, grouped ? &rt.group : nullptr);
     rt.tlas = buildTlas(gpu, deletion, rt.instances);
 
     SkyTexels sky = loadSky(scene);
@@ -79,8 +82,13 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     std::vector<gpu::GpuObject> objects;
+    const glm::vec4 unitSphere(0, 0, 0, 1);  // in its instance's object space
     for (const auto& o : scene.objects)
-        objects.push_back({o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
+        objects.push_back({unitSphere, o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
+    for (uint32_t i : rt.group.objects) {  // the group's boxes, in their order: the real spheres
+        const Object& o = scene.objects[i];
+        objects.push_back({glm::vec4(glm::dvec4(o.center, o.radius)), SHAPE_SPHERE, o.material, 0, 0});
+    }
     std::vector<gpu::GpuMaterial> materials;
     for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m));
     std::vector<gpu::GpuLight> lights;

@@ -25,6 +25,7 @@ void cameraMatrices(const Camera& camera, double aspect, glm::mat4& viewInverse,
 
 struct RtScene {
     UnitShapes shapes;
+    SphereGroup group;  // --layout grouped: the static spheres' one BLAS (empty otherwise)
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     Tlas tlas;
     Buffer camera, objects, materials, lights, sky, rayCount;
@@ -36,8 +37,11 @@ struct RtScene {
 gpu::GpuMaterial toGpuMaterial(const Material& m);
 
 // Uploads everything and writes the descriptor set for `target`.
+// groupSpheres: chapter 03's grouped layout (one BLAS for the static
+// spheres, the default of --layout) instead of one instance per object;
+// not with a sphere mesh.
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    const std::vector<uint32_t>& order, int sphereMeshLevel = 0);
+                    const std::vector<uint32_t>& order, int sphereMeshLevel = 0, bool groupSpheres = false);
 
 // A resized window (viewer.h): re-creates `target` and the per-pixel ray
 // counts at the new size and rebinds both. The device must be idle; the old

@@ -86,6 +86,28 @@ TEST(Chapter04, InstanceOrderDoesNotChangeThePicture) {
     EXPECT_LT(e.rmse, 1e-6);
 }
 
+// Chapter 03's two layouts, one instance per sphere and one BLAS of boxes
+// for all static spheres (gl_PrimitiveID picks the sphere), trace the same
+// spheres: the picture does not change, and the report names the layout
+// (grouped is the default; --layout instances the other).
+TEST(Chapter04, GroupedLayoutDoesNotChangeThePicture) {
+    for (std::string scene : {std::string(), std::string(RG_SOURCE_DIR "/tests/scenes/spheres_1000.json")}) {
+        std::vector<std::string> a = {"--layout", "instances"}, b = {"--layout", "grouped"};
+        if (!scene.empty())
+            for (auto* args : {&a, &b}) args->insert(args->end(), {"--scene", scene});
+        std::string name = scene.empty() ? "04_layout_default" : "04_layout_1000";
+        rg::ImageError e = compareRuns(name, a, b);
+        EXPECT_LE(e.fracOver1_255, 0.001) << name;
+        EXPECT_LT(e.rmse, 1e-4) << name;
+        std::string dir = RG_TEST_OUTPUT_DIR "/" + name;  // compareRuns wrote there
+        nlohmann::json instances = rgtest::readJson(dir + "/a.json"), grouped = rgtest::readJson(dir + "/b.json");
+        EXPECT_EQ(instances["acceleration"]["layout"], "instances");
+        EXPECT_EQ(grouped["acceleration"]["layout"], "grouped");
+        EXPECT_LT(grouped["acceleration"]["tlas_instances"], instances["acceleration"]["tlas_instances"]) << name;
+        EXPECT_EQ(grouped["rays_per_frame"], instances["rays_per_frame"]) << name;
+    }
+}
+
 TEST(Chapter04Windowed, TracesAndPresentsUnderXvfb) {
     rgtest::expectCleanWindowedRun(RG_EXE_04, "04_window", 20);
 }

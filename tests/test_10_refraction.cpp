@@ -93,4 +93,14 @@ TEST(Chapter10, TessellatedSpheresConvergeToTheAnalyticOne) {
     EXPECT_EQ(bad.exitCode, 2) << bad.output;
 }
 
+// The full ray tree through the grouped layout (chapter 03): glass, mirrors
+// and shadows against the CPU reference, on the default scene and on 1,000
+// spheres.
+TEST(Chapter10, GroupedLayoutMatchesTheReference) {
+    rgtest::expectMatchesReference(RG_EXE_10, "", "10_grouped_default", {"--layout", "grouped"});
+    nlohmann::json report = rgtest::expectMatchesReference(
+        RG_EXE_10, RG_SOURCE_DIR "/tests/scenes/spheres_1000.json", "10_grouped_1000", {"--layout", "grouped"});
+    EXPECT_EQ(report["acceleration"]["layout"], "grouped");
+}
+
 }  // namespace

@@ -10,14 +10,18 @@ layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec3 objectNormal;
 
 void main() {
+    // Box k of an instance is object customIndex + k (one box per instance
+    // of the unit sphere; many in a sphere group, chapter 03).
+    uint index = gl_InstanceCustomIndexEXT + gl_PrimitiveID;
+    vec4 s = objects[index].sphere;
     // Normals transform with the inverse transpose: n * M^-1 = (M^-T) n.
     payload.normal = normalize(objectNormal * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
     // The hit point on the unit sphere (normalizing projects it onto the
     // surface), then to world space: more exact than origin + t * direction.
-    payload.position = gl_ObjectToWorldEXT * vec4(normalize(objectNormal), 1.0);
-    payload.object = gl_InstanceCustomIndexEXT;
-    payload.material = objects[gl_InstanceCustomIndexEXT].material;
+    payload.position = gl_ObjectToWorldEXT * vec4(s.xyz + s.w * normalize(objectNormal), 1.0);
+    payload.object = index;
+    payload.material = objects[index].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
 }
 // [end]
