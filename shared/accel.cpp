@@ -141,6 +141,20 @@ AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion
 }  // namespace
 
 // [region unit_shapes]
+// A geometry of boxes, VkAabbPositionsKHR one after another in `boxes`.
+static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
+    return {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
+        .geometry = {.aabbs = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR,
+            .data = {.deviceAddress = boxes.address},
+            .stride = sizeof(VkAabbPositionsKHR),
+        }},
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
+    };
+}
+
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel) {
     UnitShapes shapes;
     DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
@@ -173,16 +187,7 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     // traversal calls the intersection shader for rays that enter the box.
     const VkAabbPositionsKHR box{-1, -1, -1, 1, 1, 1};
     Buffer aabbBuffer = createDeviceBuffer(gpu, inputs, &box, sizeof(box), input);
-    VkAccelerationStructureGeometryKHR aabbs{
-        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
-        .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
-        .geometry = {.aabbs = {
-            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR,
-            .data = {.deviceAddress = aabbBuffer.address},
-            .stride = sizeof(VkAabbPositionsKHR),
-        }},
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
-    };
+    VkAccelerationStructureGeometryKHR aabbs = aabbGeometry(aabbBuffer);
     shapes.stats.push_back({.name = "unit_sphere", .geometry = "aabbs"});
     shapes.sphere = buildCompactedBlas(gpu, deletion, aabbs, 1, shapes.stats.back());
     // [end]
@@ -268,17 +273,7 @@ SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scen
     Buffer boxBuffer = createDeviceBuffer(gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
                                           VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
                                               VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
-    VkAccelerationStructureGeometryKHR aabbs{
-        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
-        .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
-        .geometry = {.aabbs = {
-            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_AABBS_DATA_KHR,
-            .data = {.deviceAddress = boxBuffer.address},
-            .stride = sizeof(VkAabbPositionsKHR),
-        }},
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
-    };
-    group.blas = buildCompactedBlas(gpu, deletion, aabbs, uint32_t(boxes.size()), group.stats);
+    group.blas = buildCompactedBlas(gpu, deletion, aabbGeometry(boxBuffer), uint32_t(boxes.size()), group.stats);
     return group;
 }
 // [end]
