@@ -39,9 +39,32 @@ def check(ok, what):
         failures.append(what)
 
 
+def display_in_use(display):
+    """True when a live X server holds the display (a killed one leaves its
+    lock file and socket behind: those are removed)."""
+    lock, socket = f"/tmp/.X{display}-lock", f"/tmp/.X11-unix/X{display}"
+    try:
+        pid = int(open(lock).read().strip())
+        os.kill(pid, 0)
+        return True
+    except (FileNotFoundError, ValueError):
+        if not os.path.exists(lock):
+            return os.path.exists(socket) and not os.access(socket, os.W_OK)
+    except ProcessLookupError:
+        pass
+    except PermissionError:
+        return True  # alive, another user's
+    for stale in (lock, socket):
+        try:
+            os.remove(stale)
+        except OSError:
+            pass
+    return False
+
+
 def start_xvfb(fbdir):
     for display in range(90, 140):
-        if os.path.exists(f"/tmp/.X11-unix/X{display}") or os.path.exists(f"/tmp/.X{display}-lock"):
+        if display_in_use(display):
             continue
         proc = subprocess.Popen(["Xvfb", f":{display}", "-screen", "0", "800x600x24", "-fbdir", fbdir,
                                  "-nolisten", "tcp"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -305,6 +328,11 @@ try:
 finally:
     if chapter.poll() is None:
         chapter.kill()
-    xvfb.kill()
+    xvfb.terminate()  # lets it remove its lock file and socket
+    try:
+        xvfb.wait(timeout=5)
+    except subprocess.TimeoutExpired:
+        xvfb.kill()
+    shutil.rmtree(FBDIR, ignore_errors=True)
     print(open(log).read())
 sys.exit(1 if failures else 0)
