@@ -29,6 +29,9 @@ std::vector<BadScene> badScenes() {
         {"parallel_quad", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "quad", "u": [1,0,0], "v": [2,0,0], "material": "m"}]})", "objects[0].v"},
         {"no_objects", R"({"camera": {}, "materials": {"m": {}}, "objects": []})", "objects"},
         {"duplicated_key", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "radius": 2, "material": "m"}]})", "radius\" appears twice"},
+        {"sphere_list_not_quadruples", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, 0], "material": "m"}]})", "objects[0].data"},
+        {"sphere_list_bad_radius", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, 0, 1, 2, 0, 0, -1], "material": "m"}]})", "objects[0].data[7]"},
+        {"sphere_list_string", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, "x", 0, 1], "material": "m"}]})", "objects[0].data[1]"},
         {"missing_sky_image", R"({"camera": {}, "sky": {"image": "nope.png"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "sky.image"},
     };
 }
@@ -70,6 +73,30 @@ TEST_P(Scenes, AMinimalSceneRuns) {
 
 // The rule for coincident objects: the first listed is drawn, later copies
 // are hidden (and the loader says so).
+// The compact sphere list (for big scenes) reads as the same spheres as
+// one object each, in its order.
+TEST(SceneRules, SphereListEqualsSingleSpheres) {
+    std::string dir = rgtest::outputDir("scenes_sphere_list");
+    std::ofstream(dir + "/list.json") << R"({"camera": {}, "materials": {"a": {}, "b": {}}, "objects": [
+        {"type": "spheres", "material": "b", "data": [1, 2, 3, 0.5, -4, 0, 2.5, 2]},
+        {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "a"}]})";
+    std::ofstream(dir + "/single.json") << R"({"camera": {}, "materials": {"a": {}, "b": {}}, "objects": [
+        {"type": "sphere", "center": [1, 2, 3], "radius": 0.5, "material": "b"},
+        {"type": "sphere", "center": [-4, 0, 2.5], "radius": 2, "material": "b"},
+        {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "a"}]})";
+    rg::Scene list = rg::loadScene(dir + "/list.json"), single = rg::loadScene(dir + "/single.json");
+    ASSERT_EQ(list.objects.size(), 3u);
+    ASSERT_EQ(single.objects.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(list.objects[i].type, rg::ShapeType::Sphere);
+        EXPECT_EQ(list.objects[i].material, single.objects[i].material) << i;
+        EXPECT_EQ(list.objects[i].center, single.objects[i].center) << i;
+        EXPECT_EQ(list.objects[i].radius, single.objects[i].radius) << i;
+        EXPECT_EQ(list.objects[i].transform, single.objects[i].transform) << i;
+    }
+    EXPECT_EQ(list.scale, single.scale);
+}
+
 TEST(SceneRules, CoincidentObjectsKeepTheFirst) {
     rg::Scene s = rg::loadScene(RG_SOURCE_DIR "/tests/scenes/coincident_spheres.json");
     ASSERT_EQ(s.objects.size(), 6u);

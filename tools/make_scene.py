@@ -5,6 +5,8 @@
                                                        mixed materials) on a floor
     tools/make_scene.py ball N OUT.json [--seed S]    N random spheres in a dense ball,
                                                        in random order (a public sample's test)
+    --compact   the spheres of each material as one "spheres" object with a flat
+                array x, y, z, r, ... (docs/scene-format.md): for 10^5 spheres and more
 
 The spheres are written in random order, as a scene file written by hand or
 by another tool would be: what the order of the list does to an
@@ -67,19 +69,37 @@ def ball_scene(n, rng):
     }
 
 
+def compact(scene):
+    """One "spheres" object per material, the spheres in their order within it."""
+    lists = {}
+    others = []
+    for o in scene["objects"]:
+        if o["type"] == "sphere":
+            lists.setdefault(o["material"], []).extend(o["center"] + [o["radius"]])
+        else:
+            others.append(o)
+    scene["objects"] = others + [{"type": "spheres", "material": m, "data": d} for m, d in lists.items()]
+    return scene
+
+
 def main(argv):
     args = list(argv)
     seed = 1
+    packed = "--compact" in args
+    if packed:
+        args.remove("--compact")
     if "--seed" in args:
         i = args.index("--seed")
         seed = int(args[i + 1])
         del args[i:i + 2]
     if len(args) != 3 or args[0] not in ("floor", "ball") or not args[1].isdigit() or int(args[1]) < 1:
-        print("usage: tools/make_scene.py floor|ball N OUT.json [--seed S]", file=sys.stderr)
+        print("usage: tools/make_scene.py floor|ball N OUT.json [--seed S] [--compact]", file=sys.stderr)
         return 2
     rng = random.Random(seed)
     n = int(args[1])
     scene = floor_scene(n, rng) if args[0] == "floor" else ball_scene(n, rng)
+    if packed:
+        scene = compact(scene)
     with open(args[2], "w") as f:
         json.dump(scene, f, separators=(",", ":"))
     return 0
