@@ -4,6 +4,8 @@
 # docs/performance.md from every device measured so far.
 #   tools/perf-report.sh [--build DIR] [perf_report options...]
 #   tools/perf-report.sh --assemble-only      (plots and page from existing data)
+# The scaling study is tools/scaling.py (--out docs/perf/<device>), run apart:
+# it takes minutes on lavapipe; this script plots and includes its results.
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -40,6 +42,14 @@ page=docs/performance.md
     echo
     echo "![Chapter 11: RMSE against accumulated samples, samples per hit and GPU time, $slug](images/$(basename "$plot"))"
     echo
+    if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
+      scaling=docs/images/perf_${slug}_scaling.png
+      gnuplot -e "data='$dir/scaling.dat'; out='$scaling'; device='$slug'" tools/plot_scaling.gp
+      cat "$dir/scaling.md"
+      echo
+      echo "![GPU ms per frame and structure memory against the number of spheres, $slug](images/$(basename "$scaling"))"
+      echo
+    fi
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
 } > "$page"
