@@ -40,6 +40,7 @@ bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, d
 
 ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
     for (const auto& o : scene.objects) worldToObject_.push_back(glm::inverse(o.transform));
+    buildBvh();
     SkyTexels sky = loadSky(scene);
     skyWidth_ = sky.width;
     skyHeight_ = sky.height;
@@ -48,38 +49,125 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
         for (int c = 0; c < 3; ++c) sky_[3 * i + c] = sky.rgba[4 * i + c];
 }
 
+void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                                  double tMax, ReferenceHit& best) const {
+    const Object& obj = scene_.objects[i];
+    if (obj.hidden) return;  // a copy of an earlier object (scene.cpp's rule)
+    const glm::dmat4& inv = worldToObject_[i];
+    glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
+    glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
+    double t = -1;
+    glm::dvec3 localNormal;
+    bool front = true;
+    if (obj.type == ShapeType::Sphere) {
+        double t0, t1;
+        if (!referenceUnitSphere(o, d, t0, t1)) return;
+        if (t0 > tMin && t0 < tMax) t = t0;
+        else if (t1 > tMin && t1 < tMax) { t = t1; front = false; }
+        else return;
+        localNormal = o + t * d;
+    } else {
+        if (d.y == 0) return;  // parallel to the plane
+        t = -o.y / d.y;
+        if (!(t > tMin && t < tMax)) return;
+        glm::dvec3 p = o + t * d;
+        if (std::abs(p.x) > 1 || std::abs(p.z) > 1) return;
+        localNormal = {0, 1, 0};
+    }
+    if (best.t >= 0 && (t > best.t || (t == best.t && i > best.object))) return;
+    best.t = t;
+    best.object = i;
+    best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
+    best.frontFace = obj.type == ShapeType::Sphere ? front : glm::dot(best.normal, direction) < 0;
+}
+
+ReferenceHit ReferenceRenderer::traceLinear(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                                            double tMax) const {
+    ReferenceHit best;
+    for (uint32_t i = 0; i < scene_.objects.size(); ++i) hitObject(i, origin, direction, tMin, tMax, best);
+    return best;
+}
+
+void ReferenceRenderer::buildBvh() {
+    struct Item {
+        glm::dvec3 lo, hi, centre;
+        uint32_t object;
+    };
+    std::vector<Item> items;
+    for (uint32_t i = 0; i < scene_.objects.size(); ++i) {
+        const Object& o = scene_.objects[i];
+        if (o.hidden) continue;
+        Item item{glm::dvec3(1e300), glm::dvec3(-1e300), {}, i};
+        double y = o.type == ShapeType::Sphere ? 1 : 0;  // the unit shape's box: [-1,1] x [-y,y] x [-1,1]
+        for (int c = 0; c < 8; ++c) {
+            glm::dvec3 corner(c & 1 ? 1 : -1, c & 2 ? y : -y, c & 4 ? 1 : -1);
+            glm::dvec3 w = glm::dvec3(o.transform * glm::dvec4(corner, 1));
+            item.lo = glm::min(item.lo, w);
+            item.hi = glm::max(item.hi, w);
+        }
+        glm::dvec3 pad = 1e-9 * (item.hi - item.lo + glm::abs(item.lo) + glm::abs(item.hi));  // rounding
+        item.lo -= pad;
+        item.hi += pad;
+        item.centre = 0.5 * (item.lo + item.hi);
+        items.push_back(item);
+    }
+    if (items.empty()) return;
+    // Recursive median split: nth_element on the longest axis of the centres.
+    auto build = [&](auto& self, size_t first, size_t last) -> uint32_t {
+        uint32_t index = uint32_t(bvh_.size());
+        bvh_.push_back({});
+        glm::dvec3 lo(1e300), hi(-1e300), clo(1e300), chi(-1e300);
+        for (size_t k = first; k < last; ++k) {
+            lo = glm::min(lo, items[k].lo), hi = glm::max(hi, items[k].hi);
+            clo = glm::min(clo, items[k].centre), chi = glm::max(chi, items[k].centre);
+        }
+        bvh_[index].lo = lo;
+        bvh_[index].hi = hi;
+        if (last - first <= 4) {
+            bvh_[index].first = uint32_t(bvhObjects_.size());
+            bvh_[index].count = uint32_t(last - first);
+            for (size_t k = first; k < last; ++k) bvhObjects_.push_back(items[k].object);
+            return index;
+        }
+        glm::dvec3 extent = chi - clo;
+        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        size_t mid = (first + last) / 2;
+        std::nth_element(items.begin() + long(first), items.begin() + long(mid), items.begin() + long(last),
+                         [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
+        self(self, first, mid);  // the left child is index + 1
+        uint32_t right = self(self, mid, last);
+        bvh_[index].right = right;
+        return index;
+    };
+    build(build, 0, items.size());
+}
+
 ReferenceHit ReferenceRenderer::trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
                                       double tMax) const {
     ReferenceHit best;
-    for (uint32_t i = 0; i < scene_.objects.size(); ++i) {
-        const Object& obj = scene_.objects[i];
-        if (obj.hidden) continue;  // a copy of an earlier object (scene.cpp's rule)
-        const glm::dmat4& inv = worldToObject_[i];
-        glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
-        glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
-        double t = -1;
-        glm::dvec3 localNormal;
-        bool front = true;
-        if (obj.type == ShapeType::Sphere) {
-            double t0, t1;
-            if (!referenceUnitSphere(o, d, t0, t1)) continue;
-            if (t0 > tMin && t0 < tMax) t = t0;
-            else if (t1 > tMin && t1 < tMax) { t = t1; front = false; }
-            else continue;
-            localNormal = o + t * d;
-        } else {
-            if (d.y == 0) continue;  // parallel to the plane
-            t = -o.y / d.y;
-            if (!(t > tMin && t < tMax)) continue;
-            glm::dvec3 p = o + t * d;
-            if (std::abs(p.x) > 1 || std::abs(p.z) > 1) continue;
-            localNormal = {0, 1, 0};
+    if (bvh_.empty()) return best;
+    glm::dvec3 inv = 1.0 / direction;  // +-inf for an axis the ray is parallel to
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const BvhNode& node = bvh_[stack[--top]];
+        // Slab test against (tMin, the closest hit so far); NaN (0 * inf) leaves an axis out.
+        double t0 = tMin, t1 = best.t >= 0 ? best.t : tMax;
+        for (int a = 0; a < 3; ++a) {
+            double n = (node.lo[a] - origin[a]) * inv[a], f = (node.hi[a] - origin[a]) * inv[a];
+            if (n > f) std::swap(n, f);
+            if (n > t0) t0 = n;
+            if (f < t1) t1 = f;
         }
-        if (best.t >= 0 && t >= best.t) continue;
-        best.t = t;
-        best.object = i;
-        best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
-        best.frontFace = obj.type == ShapeType::Sphere ? front : glm::dot(best.normal, direction) < 0;
+        if (t0 > t1 * (1 + 1e-12) + 1e-300) continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                hitObject(bvhObjects_[k], origin, direction, tMin, tMax, best);
+        } else {
+            stack[top++] = node.right;
+            stack[top++] = uint32_t(&node - bvh_.data()) + 1;  // the left child first
+        }
     }
     return best;
 }

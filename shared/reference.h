@@ -31,8 +31,12 @@ struct ReferenceHit {
 class ReferenceRenderer {
 public:
     explicit ReferenceRenderer(const Scene& scene);
-    // The closest hit along origin + t * direction with t in (tMin, tMax).
+    // The closest hit along origin + t * direction with t in (tMin, tMax),
+    // through a BVH over the objects' boxes; of equally close hits, the
+    // object listed first.
     ReferenceHit trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
+    // The same by testing every object (what the BVH must agree with: tests).
+    ReferenceHit traceLinear(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
     glm::dvec3 sky(const glm::dvec3& direction) const;
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
                    glm::dvec3& direction) const;
@@ -59,6 +63,21 @@ public:
     double eyeTmin() const { return scene_.scale / 65536.0; }
 
 private:
+    // Tests object i; updates `best` when it is hit closer (or as close and listed earlier).
+    void hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax,
+                   ReferenceHit& best) const;
+    void buildBvh();
+
+    // The reference's own acceleration (thesis 2.2.1 on the CPU): a binary
+    // tree of boxes, median splits on the longest axis, up to 4 objects a leaf.
+    struct BvhNode {
+        glm::dvec3 lo, hi;
+        uint32_t first = 0, count = 0;  // a leaf: bvhObjects_[first, first + count)
+        uint32_t right = 0;             // an inner node: children at index + 1 and `right`
+    };
+    std::vector<BvhNode> bvh_;
+    std::vector<uint32_t> bvhObjects_;
+
     const Scene& scene_;
     std::vector<glm::dmat4> worldToObject_;
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
