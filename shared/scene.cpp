@@ -156,18 +156,20 @@ void readSphereList(const Reader& r, const json& o, const std::string& key, uint
     const json* data = o.contains("data") ? &o["data"] : nullptr;
     if (!data || !data->is_array() || data->empty() || data->size() % 4 != 0)
         r.fail(key + ".data", "must be an array of x, y, z, radius: 4 numbers a sphere");
+    const json::array_t& numbers = data->get_ref<const json::array_t&>();
     auto value = [&](size_t k, double lo, double hi) {
-        const json& v = (*data)[k];
-        double d = v.is_number() ? v.get<double>() : NAN;
+        const json& v = numbers[k];
+        double d = v.is_number_float() ? v.get_ref<const double&>() : v.is_number() ? v.get<double>() : NAN;
         if (!(d >= lo && d <= hi)) r.number(v, key + ".data[" + std::to_string(k) + "]", lo, hi);  // fails
         return d;
     };
     objects.reserve(objects.size() + data->size() / 4);
-    for (size_t k = 0; k < data->size(); k += 4) {
+    for (size_t k = 0; k < numbers.size(); k += 4) {
         Object sphere{.type = ShapeType::Sphere, .material = material};
         sphere.center = {value(k, -1e30, 1e30), value(k + 1, -1e30, 1e30), value(k + 2, -1e30, 1e30)};
         sphere.radius = value(k + 3, 1e-12, kHuge);
-        sphere.transform = glm::scale(glm::translate(glm::dmat4(1.0), sphere.center), glm::dvec3(sphere.radius));
+        sphere.transform = glm::dmat4(sphere.radius);  // scale, then move: as for a single sphere
+        sphere.transform[3] = glm::dvec4(sphere.center, 1);
         objects.push_back(sphere);
     }
 }
