@@ -27,6 +27,17 @@ if [ $assemble_only -eq 0 ]; then
   rm -rf "$out/runs"  # logs and images of each run: not kept
 fi
 page=docs/performance.md
+# One measured section of a device: its table (TABLE.md), then the plot
+# tools/plot_NAME.gp draws from NAME.dat, with a caption.
+section() {
+  local dir=$1 slug=$2 table=$3 name=$4 caption=$5
+  local plot=docs/images/perf_${slug}_$name.png
+  gnuplot -e "data='$dir/$name.dat'; out='$plot'; device='$slug'" "tools/plot_$name.gp"
+  cat "$dir/$table.md"
+  echo
+  echo "![$caption, $slug](images/$(basename "$plot"))"
+  echo
+}
 {
   echo "# Performance: speed against error"
   echo
@@ -36,19 +47,9 @@ page=docs/performance.md
   for dir in docs/perf/*/; do
     [ -f "$dir/perf.md" ] || continue
     slug=$(basename "$dir")
-    plot=docs/images/perf_${slug}_convergence.png
-    gnuplot -e "data='$dir/convergence.dat'; out='$plot'; device='$slug'" tools/plot_convergence.gp
-    cat "$dir/perf.md"
-    echo
-    echo "![Chapter 11: RMSE against accumulated samples, samples per hit and GPU time, $slug](images/$(basename "$plot"))"
-    echo
+    section "$dir" "$slug" perf convergence "Chapter 11: RMSE against accumulated samples, samples per hit and GPU time"
     if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
-      scaling=docs/images/perf_${slug}_scaling.png
-      gnuplot -e "data='$dir/scaling.dat'; out='$scaling'; device='$slug'" tools/plot_scaling.gp
-      cat "$dir/scaling.md"
-      echo
-      echo "![GPU ms per frame and structure memory against the number of spheres, $slug](images/$(basename "$scaling"))"
-      echo
+      section "$dir" "$slug" scaling scaling "GPU ms per frame and structure memory against the number of spheres"
     fi
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
