@@ -252,6 +252,19 @@ std::vector<uint32_t> mortonOrder(const Scene& scene) {
 }
 // [end]
 
+bool inSphereGroup(const Object& o) {
+    if (o.type != ShapeType::Sphere || o.moving || o.hidden) return false;
+    glm::dvec3 x(o.transform[0]), y(o.transform[1]), z(o.transform[2]);
+    double r2 = glm::dot(x, x), tolerance = 1e-12 * r2;
+    return std::abs(glm::dot(y, y) - r2) <= tolerance && std::abs(glm::dot(z, z) - r2) <= tolerance &&
+           std::abs(glm::dot(x, y)) <= tolerance && std::abs(glm::dot(y, z)) <= tolerance &&
+           std::abs(glm::dot(z, x)) <= tolerance;
+}
+
+glm::dvec4 groupSphere(const Object& o) {
+    return glm::dvec4(glm::dvec3(o.transform[3]), glm::length(glm::dvec3(o.transform[0])));
+}
+
 // [region sphere_group]
 SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                              const std::vector<uint32_t>& order, uint32_t firstObject) {
@@ -263,7 +276,8 @@ SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scen
         // Rounded outwards to float, so that no part of the sphere is outside its box.
         auto down = [](double v) { return std::nextafter(float(v), -INFINITY); };
         auto up = [](double v) { return std::nextafter(float(v), INFINITY); };
-        glm::dvec3 lo = o.center - o.radius, hi = o.center + o.radius;
+        glm::dvec4 sphere = groupSphere(o);
+        glm::dvec3 lo = glm::dvec3(sphere) - sphere.w, hi = glm::dvec3(sphere) + sphere.w;
         boxes.push_back({down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)});
         group.objects.push_back(i);
     }

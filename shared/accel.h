@@ -65,7 +65,11 @@ struct SphereGroup {
     uint32_t firstObject = 0;       // its custom index: where its entries start in the GPU's object array
     BlasStats stats;
 };
-inline bool inSphereGroup(const Object& o) { return o.type == ShapeType::Sphere && !o.moving && !o.hidden; }
+// A sphere the group can hold: static, visible, and round: its transform
+// scales evenly (and may rotate, which a sphere does not show). An ellipsoid
+// (uneven scale) stays an instance. Its sphere is groupSphere(o).
+bool inSphereGroup(const Object& o);
+glm::dvec4 groupSphere(const Object& o);  // world centre, radius
 SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                              const std::vector<uint32_t>& order, uint32_t firstObject);
 

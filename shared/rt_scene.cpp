@@ -85,10 +85,8 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     const glm::vec4 unitSphere(0, 0, 0, 1);  // in its instance's object space
     for (const auto& o : scene.objects)
         objects.push_back({unitSphere, o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
-    for (uint32_t i : rt.group.objects) {  // the group's boxes, in their order: the real spheres
-        const Object& o = scene.objects[i];
-        objects.push_back({glm::vec4(glm::dvec4(o.center, o.radius)), SHAPE_SPHERE, o.material, 0, 0});
-    }
+    for (uint32_t i : rt.group.objects)  // the group's boxes, in their order: the real spheres
+        objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE, scene.objects[i].material, 0, 0});
     std::vector<gpu::GpuMaterial> materials;
     for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m));
     std::vector<gpu::GpuLight> lights;

@@ -49,7 +49,7 @@ TEST(Chapter04, MatchesTheReference) {
 // The default scene translated by (1e4, 0, -1e4) ... (1e6, 0, -1e6), and the
 // eye on the mirror sphere's top: against the reference like any scene.
 TEST(Chapter04, FarFromTheOriginAndEyeOnASurfaceMatchTheReference) {
-    for (const char* scene : {"far_1e4", "far_1e5", "far_1e6", "eye_on_sphere", "spheres_1000"})
+    for (const char* scene : {"far_1e4", "far_1e5", "far_1e6", "eye_on_sphere", "spheres_1000", "transformed_spheres"})
         rgtest::expectMatchesReference(RG_EXE_04, RG_SOURCE_DIR "/tests/scenes/" + std::string(scene) + ".json",
                                        std::string("04_") + scene);
 }
