@@ -147,6 +147,13 @@ double measuredScale(const Scene& s) {
     return scale;
 }
 
+// The unit sphere scaled to `radius`, then moved to `center`.
+glm::dmat4 sphereTransform(const glm::dvec3& center, double radius) {
+    glm::dmat4 m(radius);
+    m[3] = glm::dvec4(center, 1);
+    return m;
+}
+
 // {"type": "spheres", "material": m, "data": [x, y, z, r, x, y, z, r, ...]}:
 // a million spheres as one flat array of numbers load about twice as fast as
 // a million JSON objects, in 40 % less memory. The checks are
@@ -168,8 +175,7 @@ void readSphereList(const Reader& r, const json& o, const std::string& key, uint
         Object sphere{.type = ShapeType::Sphere, .material = material};
         sphere.center = {value(k, -1e30, 1e30), value(k + 1, -1e30, 1e30), value(k + 2, -1e30, 1e30)};
         sphere.radius = value(k + 3, 1e-12, kHuge);
-        sphere.transform = glm::dmat4(sphere.radius);  // scale, then move: as for a single sphere
-        sphere.transform[3] = glm::dvec4(sphere.center, 1);
+        sphere.transform = sphereTransform(sphere.center, sphere.radius);
         objects.push_back(sphere);
     }
 }
@@ -291,7 +297,7 @@ Scene loadScene(const std::string& path) {
             if (o.contains("center")) obj.center = r.vec3(o["center"], key + ".center");
             if (!o.contains("radius")) r.fail(key + ".radius", "missing");
             obj.radius = r.number(o["radius"], key + ".radius", 1e-12, kHuge);
-            obj.transform = glm::scale(glm::translate(glm::dmat4(1.0), obj.center), glm::dvec3(obj.radius));
+            obj.transform = sphereTransform(obj.center, obj.radius);
         } else if (type == "quad") {
             r.onlyKeys(o, key, {"type", "material", "center", "u", "v", "transform", "moving"});
             obj.type = ShapeType::Quad;
