@@ -19,7 +19,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
     uint64_t rays = countRays(app.gpu, rt);  // counted by the ray generation shader, last frame
     double medianMs = median(times.gpuMs);
     report["rays_per_frame"] = rays;
-    report["mrays_per_s"] = medianMs > 0 ? double(rays) / (medianMs * 1e-3) / 1e6 : 0.0;
+    report["mrays_per_s"] = mraysPerSecond(rays, medianMs);
     uint64_t nonFinite = 0;
     for (float v : image.rgba) nonFinite += !std::isfinite(v);
     report["non_finite_values"] = nonFinite;

@@ -1,6 +1,7 @@
 #include "viewer.h"
 
 #include "output.h"
+#include "rt_report.h"
 #include "vk_check.h"
 
 #include <imgui.h>
@@ -298,8 +299,7 @@ void Viewer::resized() {
 void Viewer::measureRays() {
     VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the counts of finished frames only
     raysPerFrame_ = countRays(app_.gpu, rt_);
-    double ms = loop_.times().gpuMs.empty() ? 0 : recent(loop_.times().gpuMs);
-    mraysPerS_ = ms > 0 ? double(raysPerFrame_) / (ms * 1e-3) / 1e6 : 0;
+    mraysPerS_ = mraysPerSecond(raysPerFrame_, loop_.times().gpuMs.empty() ? 0 : recent(loop_.times().gpuMs));
     lastRays_ = Clock::now();
 }
 
