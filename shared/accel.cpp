@@ -219,36 +219,30 @@ VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
 }
 // [end]
 
-// [region morton]
-// Interleaves the low 10 bits of x, y, z: bit k of x goes to bit 3k.
-uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z) {
-    auto spread = [](uint32_t v) {
-        v &= 0x3FFu;
-        v = (v | (v << 16)) & 0x030000FFu;
-        v = (v | (v << 8)) & 0x0300F00Fu;
-        v = (v | (v << 4)) & 0x030C30C3u;
-        v = (v | (v << 2)) & 0x09249249u;
-        return v;
-    };
-    return spread(x) | (spread(y) << 1) | (spread(z) << 2);
+// [region median_split]
+// Orders [first, last) so that lavapipe's split of it at the middle index is
+// a split in space, then each half the same way: the tree it builds is the
+// tree of median splits.
+static void splitAtMedian(const Scene& scene, uint32_t* first, uint32_t* last) {
+    size_t n = size_t(last - first);
+    if (n <= 2) return;  // one node with two leaves: nothing to choose
+    auto centre = [&](uint32_t i) { return glm::dvec3(scene.objects[i].transform[3]); };  // its box's centre
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (uint32_t* i = first; i != last; ++i) lo = glm::min(lo, centre(*i)), hi = glm::max(hi, centre(*i));
+    glm::dvec3 extent = hi - lo;
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    uint32_t* middle = first + (n + 1) / 2;  // lavapipe's left half holds ceil(n / 2)
+    std::nth_element(first, middle, last, [&](uint32_t a, uint32_t b) {
+        double ca = centre(a)[axis], cb = centre(b)[axis];
+        return ca != cb ? ca < cb : a < b;  // ties by index: the same order on every machine
+    });
+    splitAtMedian(scene, first, middle);
+    splitAtMedian(scene, middle, last);
 }
 
-std::vector<uint32_t> mortonOrder(const Scene& scene) {
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const Object& o : scene.objects) {  // the bounds of the box centres
-        lo = glm::min(lo, glm::dvec3(o.transform[3]));
-        hi = glm::max(hi, glm::dvec3(o.transform[3]));
-    }
-    glm::dvec3 extent = glm::max(hi - lo, glm::dvec3(1e-300));  // a flat axis maps to 0
-    std::vector<std::pair<uint32_t, uint32_t>> keyed;  // (code, object)
-    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
-        glm::dvec3 c = (glm::dvec3(scene.objects[i].transform[3]) - lo) / extent * 1023.0;  // the box centre, 0..1023
-        keyed.push_back({mortonCode(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z)), i});
-    }
-    std::sort(keyed.begin(), keyed.end());  // ties keep file order: (code, index) pairs
-    std::vector<uint32_t> order;
-    for (const auto& k : keyed) order.push_back(k.second);
-    return order;
+std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t> objects) {
+    splitAtMedian(scene, objects.data(), objects.data() + objects.size());
+    return objects;
 }
 // [end]
 
@@ -267,19 +261,16 @@ glm::dvec4 groupSphere(const Object& o) {
 
 // [region sphere_group]
 SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
-                             const std::vector<uint32_t>& order, uint32_t firstObject) {
-    SphereGroup group{.firstObject = firstObject};
+                             const std::vector<uint32_t>& objects, uint32_t firstObject) {
+    SphereGroup group{.objects = objects, .firstObject = firstObject};
     std::vector<VkAabbPositionsKHR> boxes;
-    for (uint32_t i : order) {  // Morton order: neighbours in the list are neighbours in space
-        const Object& o = scene.objects[i];
-        if (!inSphereGroup(o)) continue;
+    for (uint32_t i : objects) {  // in median-split order, the tree lavapipe builds is a good one
         // Rounded outwards to float, so that no part of the sphere is outside its box.
         auto down = [](double v) { return std::nextafter(float(v), -INFINITY); };
         auto up = [](double v) { return std::nextafter(float(v), INFINITY); };
-        glm::dvec4 sphere = groupSphere(o);
+        glm::dvec4 sphere = groupSphere(scene.objects[i]);
         glm::dvec3 lo = glm::dvec3(sphere) - sphere.w, hi = glm::dvec3(sphere) + sphere.w;
         boxes.push_back({down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)});
-        group.objects.push_back(i);
     }
     group.stats = {.name = "sphere_group", .geometry = "aabbs"};
     if (boxes.empty()) return group;
@@ -300,7 +291,7 @@ std::vector<uint32_t> fileOrder(const Scene& scene) {
 
 // [region make_instances]
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& order,
+                                                              const std::vector<uint32_t>& objects,
                                                               const SphereGroup* group) {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     if (group && !group->objects.empty())
@@ -312,9 +303,8 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene
             .flags = 0,
             .accelerationStructureReference = group->blas.address,
         });
-    for (uint32_t i : order) {
+    for (uint32_t i : objects) {
         const Object& o = scene.objects[i];
-        if (group && inSphereGroup(o)) continue;  // a box of the group
         bool sphere = o.type == ShapeType::Sphere;
         bool mesh = sphere && shapes.meshSphere.handle != VK_NULL_HANDLE;  // --sphere-mesh
         instances.push_back({

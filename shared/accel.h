@@ -38,26 +38,24 @@ struct UnitShapes {
 // which makeInstances then uses for every sphere instead of the analytic one.
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0);
 
-// The order in which objects become TLAS instances (thesis 2.2.1). A builder
+// The order in which objects go into a structure (thesis 2.2.1). A builder
 // may take the order it is given as the tree: lavapipe's splits the list at
-// its middle without sorting, so objects far apart in the list must be far
-// apart in space. Morton order (default) sorts the objects by the Z-order
-// code of their box centres; --file-order keeps the scene file's order.
-std::vector<uint32_t> mortonOrder(const Scene& scene);
-uint32_t mortonCode(uint32_t x, uint32_t y, uint32_t z);  // 10 bits each, interleaved: x in bit 0, 3, 6, ...
-std::vector<uint32_t> fileOrder(const Scene& scene);  // 0, 1, 2, ...
-// Chapter 03's choice, for the chapters after it: Morton unless --file-order.
-inline std::vector<uint32_t> instanceOrder(const Scene& scene, bool keepFileOrder) {
-    return keepFileOrder ? fileOrder(scene) : mortonOrder(scene);
-}
+// its middle index, recursively, without sorting, so objects far apart in the
+// list must be far apart in space. medianSplitOrder makes every one of those
+// halves a half in space: it splits the objects' box centres at the median of
+// their longest axis, as many to the left as lavapipe puts there, and
+// recurses into each half. `objects` are indices into scene.objects.
+std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t> objects);
+std::vector<uint32_t> fileOrder(const Scene& scene);  // every object: 0, 1, 2, ...
+inline std::vector<uint32_t> medianSplitOrder(const Scene& scene) { return medianSplitOrder(scene, fileOrder(scene)); }
 
-// TLAS instances: instance k is object order[k] (its custom index is the
+// TLAS instances: instance k is object objects[k] (its custom index is the
 // object's index, which the shaders use), pointing at the quad or sphere
 // BLAS with the object's transform. Hit group offset: 0 for triangles, 1 for
 // spheres, 2 for the sphere mesh (chapter 04's SBT).
 // The thesis's other layout (2.2.1: spatially close geometry belongs in one
-// BLAS): every static, visible sphere becomes one box of a single BLAS of
-// AABBs, in `order`, placed by one instance with the identity transform.
+// BLAS): static, visible spheres become boxes of a single BLAS of AABBs, in
+// the order given, placed by one instance with the identity transform.
 // Box k's sphere is GPU object firstObject + k (gl_PrimitiveID = k).
 struct SphereGroup {
     AccelerationStructure blas;
@@ -70,11 +68,13 @@ struct SphereGroup {
 // (uneven scale) stays an instance. Its sphere is groupSphere(o).
 bool inSphereGroup(const Object& o);
 glm::dvec4 groupSphere(const Object& o);  // world centre, radius
+// Every one of `objects` must be inSphereGroup.
 SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
-                             const std::vector<uint32_t>& order, uint32_t firstObject);
+                             const std::vector<uint32_t>& objects, uint32_t firstObject);
 
+// The group's one instance (if it has spheres) first, then one per object.
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& order,
+                                                              const std::vector<uint32_t>& objects,
                                                               const SphereGroup* group = nullptr);
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m);
 

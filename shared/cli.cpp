@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <utility>
+#include <vector>
 
 namespace rg {
 
@@ -16,7 +18,7 @@ bool displayAvailable() {
 void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
     app.add_option("--scene", opts.scene, "Scene JSON file (default: the chapter's own scene)");
     app.add_flag("--file-order", opts.fileOrder,
-                 "Build the TLAS from the objects in the scene file's order instead of Morton order");
+                 "Build the structures from the objects in the scene file's order instead of median splits");
     if (!reference) return;
     app.add_flag("--reference", opts.reference, "Also render the CPU double-precision reference and report the error");
     app.add_flag("!--no-ui", opts.ui, "Start the window without its overlay (H shows it)");
@@ -26,6 +28,35 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
         ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"instances", false}, {"grouped", true}},
                                             CLI::ignore_case));
 }
+
+namespace {
+
+// A run must not write over its own input: a report named after the scene
+// file (--output floor.png next to floor.json) would replace the scene.
+std::optional<std::string> outputClash(const Options& opts) {
+    namespace fs = std::filesystem;
+    auto canonical = [](const fs::path& p) {
+        std::error_code ec;
+        fs::path c = fs::weakly_canonical(p, ec);
+        return ec ? p.lexically_normal() : c;
+    };
+    fs::path png = opts.output, stem = png.parent_path() / png.stem();
+    if (canonical(png) == canonical(opts.report))
+        return "--output and --report name the same file " + opts.output;
+    if (opts.scene.empty()) return std::nullopt;
+    std::vector<std::pair<std::string, fs::path>> written = {
+        {"--output", png}, {"--report", opts.report}, {"the image's copy", fs::path(png).replace_extension(".pfm")}};
+    if (opts.reference)
+        for (const char* suffix : {"_reference.png", "_reference.pfm", "_error.png"})
+            written.push_back({"the reference's output", stem.string() + suffix});
+    for (const auto& [what, path] : written)
+        if (canonical(path) == canonical(opts.scene))
+            return what + " " + path.string() + " would overwrite the scene file " + opts.scene +
+                   "; choose another --output or --report";
+    return std::nullopt;
+}
+
+}  // namespace
 
 std::optional<int> parseCommandLine(int argc, char** argv, const std::string& chapter,
                                     const std::string& description, Options& opts,
@@ -59,6 +90,10 @@ std::optional<int> parseCommandLine(int argc, char** argv, const std::string& ch
     if (opts.output.empty()) opts.output = chapter + ".png";
     if (opts.report.empty())
         opts.report = std::filesystem::path(opts.output).replace_extension(".json").string();
+    if (auto clash = outputClash(opts)) {
+        std::fprintf(stderr, "%s: error: %s\n", chapter.c_str(), clash->c_str());
+        return 2;
+    }
     return std::nullopt;
 }
 

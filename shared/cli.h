@@ -23,7 +23,7 @@ struct Options {
     // From chapter 03 on:
     std::string scene;            // scene JSON (default: the chapter's own)
     bool reference = false;       // also render the CPU double-precision reference
-    bool fileOrder = false;       // TLAS instances in the scene file's order, not Morton order
+    bool fileOrder = false;       // structures built in the scene file's order, not median splits
     bool groupSpheres = true;     // --layout grouped (default, 04 on): static spheres in one BLAS; instances: one each
     // From chapter 04 on:
     bool ui = true;               // the window's overlay (viewer.h); --no-ui starts without it

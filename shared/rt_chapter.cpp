@@ -31,7 +31,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         Image target = createImage2D(app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         RtScene rt = uploadScene(app.gpu, app.deletion, scene, target,
-                                 instanceOrder(scene, opts.fileOrder), settings.sphereMesh, opts.groupSpheres);
+                                 {.groupSpheres = opts.groupSpheres, .fileOrder = opts.fileOrder,
+                                  .sphereMeshLevel = settings.sphereMesh});
 
         // [region shaders]
         // SBT: raygen | miss: sky, shadow | hit: quad, sphere, sphere mesh

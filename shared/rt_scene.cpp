@@ -58,17 +58,28 @@ gpu::GpuMaterial toGpuMaterial(const Material& m) {
             glm::vec4(float(m.f0), float(m.roughness), 0, 0)};
 }
 
+// [region layout]
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    const std::vector<uint32_t>& order, int sphereMeshLevel, bool groupSpheres) {
+                    const SceneLayout& layout) {
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
-    rt.shapes = buildUnitShapes(gpu, deletion, sphereMeshLevel);
-    bool grouped = groupSpheres && sphereMeshLevel == 0;  // a sphere mesh is instanced
-    if (grouped)  // its entries go after the scene's own objects in the GPU's array
-        rt.group = buildSphereGroup(gpu, deletion, scene, order, uint32_t(scene.objects.size()));
-    rt.instances = makeInstances(scene, rt.shapes, order, grouped ? &rt.group : nullptr);
+    rt.shapes = buildUnitShapes(gpu, deletion, layout.sphereMeshLevel);
+    // Chapter 03: which objects become boxes of the sphere group and which
+    // instances, each list in the order its structure is built from.
+    bool grouping = layout.groupSpheres && layout.sphereMeshLevel == 0;  // a sphere mesh is instanced
+    std::vector<uint32_t> grouped, instanced;
+    for (uint32_t i = 0; i < scene.objects.size(); ++i)
+        (grouping && inSphereGroup(scene.objects[i]) ? grouped : instanced).push_back(i);
+    if (!layout.fileOrder) {
+        grouped = medianSplitOrder(scene, std::move(grouped));
+        instanced = medianSplitOrder(scene, std::move(instanced));
+    }
+    // The group's entries go after the scene's own objects in the GPU's array.
+    rt.group = buildSphereGroup(gpu, deletion, scene, grouped, uint32_t(scene.objects.size()));
+    rt.instances = makeInstances(scene, rt.shapes, instanced, &rt.group);
     rt.tlas = buildTlas(gpu, deletion, rt.instances);
+// [end]
 
     SkyTexels sky = loadSky(scene);
     gpu::RtCamera camera{};

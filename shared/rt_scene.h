@@ -36,12 +36,17 @@ struct RtScene {
 // A material as the shaders read it (host_device.h).
 gpu::GpuMaterial toGpuMaterial(const Material& m);
 
+// How the scene goes into acceleration structures (chapter 03; the command
+// line's --layout, --file-order and --sphere-mesh).
+struct SceneLayout {
+    bool groupSpheres = true;  // static spheres as boxes of one BLAS; else one instance per object
+    bool fileOrder = false;    // build in the scene file's order, not medianSplitOrder
+    int sphereMeshLevel = 0;   // > 0: icospheres of that level, one instance each (never grouped)
+};
+
 // Uploads everything and writes the descriptor set for `target`.
-// groupSpheres: chapter 03's grouped layout (one BLAS for the static
-// spheres, the default of --layout) instead of one instance per object;
-// not with a sphere mesh.
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
-                    const std::vector<uint32_t>& order, int sphereMeshLevel = 0, bool groupSpheres = false);
+                    const SceneLayout& layout);
 
 // A resized window (viewer.h): re-creates `target` and the per-pixel ray
 // counts at the new size and rebinds both. The device must be idle; the old

@@ -67,7 +67,7 @@ TEST_P(Scenes, AMinimalSceneRuns) {
     std::ofstream(dir + "/good.json") << kGood;
     rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--validation", "--scene", dir + "/good.json",
                                                    "--width", "32", "--height", "32", "--frames", "1", "--output",
-                                                   dir + "/good.png"});
+                                                   dir + "/good_render.png"});
     EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 

@@ -66,8 +66,8 @@ int main(int argc, char** argv) {
 
         // [region build]
         rg::UnitShapes shapes = rg::buildUnitShapes(gpu, app.deletion);                // two BLASes
-        // Instance k is object order[k]: neighbours in space next to each other.
-        std::vector<uint32_t> order = opts.fileOrder ? rg::fileOrder(scene) : rg::mortonOrder(scene);
+        // Instance k is object order[k]: the list's halves are halves in space.
+        std::vector<uint32_t> order = opts.fileOrder ? rg::fileOrder(scene) : rg::medianSplitOrder(scene);
         std::vector<VkAccelerationStructureInstanceKHR> instances = rg::makeInstances(scene, shapes, order);
         rg::Tlas tlas = rg::buildTlas(gpu, app.deletion, instances);                    // one TLAS
         // [end]

@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
                                              VK_FORMAT_R32G32B32A32_SFLOAT,
                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         // Chapter 03's structures, plus the buffers the shaders read.
-        rg::RtScene rt = rg::uploadScene(app.gpu, app.deletion, scene, target, rg::instanceOrder(scene, opts.fileOrder),
-                                         0, opts.groupSpheres);
+        rg::RtScene rt = rg::uploadScene(app.gpu, app.deletion, scene, target,
+                                         {.groupSpheres = opts.groupSpheres, .fileOrder = opts.fileOrder});
 
         // [region shaders]
         // The SBT's records, in order: raygen | miss 0 | hit 0 (quads), hit 1 (spheres).
