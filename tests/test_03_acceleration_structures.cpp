@@ -36,7 +36,7 @@ TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
     EXPECT_EQ(report["top_view"].value("last_frame", 0), frames - 1);
 
     // At the centre of each instance's box, the colour of the last instance
-    // (in drawing order) whose box covers that point.
+    // (in drawing order, the report's order) whose box covers that point.
     rgtest::Png png = rgtest::readPng(dir + "/03.png");
     ASSERT_EQ(png.width, w);
     const auto& view = report["top_view"];
@@ -54,7 +54,7 @@ TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
         int px = int((cx - view["x0"].get<double>()) / view["width"].get<double>() * w);
         int py = int((cz - view["z0"].get<double>()) / view["depth"].get<double>() * h);
         ASSERT_TRUE(px >= 0 && px < w && py >= 0 && py < h);
-        glm::vec3 want = expectedColor(uint32_t(top));
+        glm::vec3 want = expectedColor(instances[top]["object"].get<uint32_t>());  // coloured by object
         const uint8_t* p = png.at(px, py);
         EXPECT_NEAR(p[0], rgtest::display8(want.r), 1) << "instance " << i;
         EXPECT_NEAR(p[1], rgtest::display8(want.g), 1) << "instance " << i;

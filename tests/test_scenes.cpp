@@ -32,6 +32,10 @@ std::vector<BadScene> badScenes() {
         {"sphere_list_not_quadruples", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, 0], "material": "m"}]})", "objects[0].data"},
         {"sphere_list_bad_radius", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, 0, 1, 2, 0, 0, -1], "material": "m"}]})", "objects[0].data[7]"},
         {"sphere_list_string", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, "x", 0, 1], "material": "m"}]})", "objects[0].data[1]"},
+        {"sphere_list_nested_array", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, 0, [1, 2]], "material": "m"}]})", "objects[0].data[3]: must be a number"},
+        {"sphere_list_object", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": [0, 0, {"data": [1]}, 1], "material": "m"}]})", "objects[0].data[2]: must be a number"},
+        {"sphere_list_not_array", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "spheres", "data": 4, "material": "m"}]})", "objects[0].data"},
+        {"data_on_a_sphere", R"({"camera": {}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "data": [1, 2, 3, 4], "material": "m"}]})", "objects[0].data: unknown key"},
         {"missing_sky_image", R"({"camera": {}, "sky": {"image": "nope.png"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "sky.image"},
     };
 }

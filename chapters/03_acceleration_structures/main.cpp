@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
                           {"update", "refit in place every frame (mode UPDATE)"}};
         report["top_view"] = {{"x0", bounds.x}, {"z0", bounds.y}, {"width", bounds.z}, {"depth", bounds.w},
                               {"last_frame", lastFrame}};
-        for (size_t i = 0; i < scene.objects.size(); ++i) {
+        for (uint32_t i : order) {  // in TLAS order, which is also the top view's drawing order
             const rg::Object& o = scene.objects[i];
             TopBox b = topBox(o.moving ? movedTransform(o, lastFrame) : o.transform);
             report["instances"].push_back({{"object", i}, {"shape", o.type == rg::ShapeType::Sphere ? "sphere" : "quad"},
