@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Draws the docs' explanatory figures as SVG into docs/images/:
 
+  03_split_order.svg  the boxes lavapipe's midpoint builder makes of a list in file order and in median-split order
   04_sbt_layout.svg   the shader binding table of chapters 06-11 and how a ray picks its record
   10_ray_tree.svg     chapter 10's ray tree through a glass sphere (n = 1.517), traced here exactly
   11_lobe.svg         64 directions of chapter 11's lobe: the scrambled Sobol points, mapped
@@ -38,8 +39,9 @@ class Svg:
         self.add(f"<text x='{x:.1f}' y='{y:.1f}' text-anchor='{anchor}' fill='{color}' font-family='sans-serif' "
                  f"font-size='{size}' font-weight='{weight}'>{s}</text>")
 
-    def rect(self, x, y, w, h, fill="#fff", stroke="#333"):
-        self.add(f"<rect x='{x:.1f}' y='{y:.1f}' width='{w:.1f}' height='{h:.1f}' fill='{fill}' stroke='{stroke}'/>")
+    def rect(self, x, y, w, h, fill="#fff", stroke="#333", opacity=1.0, width=1.0):
+        self.add(f"<rect x='{x:.1f}' y='{y:.1f}' width='{w:.1f}' height='{h:.1f}' fill='{fill}' "
+                 f"fill-opacity='{opacity}' stroke='{stroke}' stroke-width='{width}'/>")
 
     def circle(self, x, y, r, fill="none", stroke="#333", width=1.5):
         self.add(f"<circle cx='{x:.1f}' cy='{y:.1f}' r='{r:.1f}' fill='{fill}' stroke='{stroke}' stroke-width='{width}'/>")
@@ -51,6 +53,55 @@ class Svg:
                 "fill='context-stroke'/></marker></defs>\n"
                 f"<rect width='{self.w}' height='{self.h}' fill='white'/>\n")
         return head + "\n".join(self.items) + "\n</svg>\n"
+
+
+# --- chapter 03: what the order of a list does to a midpoint builder --------------------------------
+def median_split(points, order):
+    """shared/accel.cpp's splitAtMedian in 2D: longest axis, ceil(n / 2) to the front, ties by index."""
+    if len(order) <= 2:
+        return order
+    xs = [points[i][0] for i in order]
+    zs = [points[i][1] for i in order]
+    axis = 0 if max(xs) - min(xs) >= max(zs) - min(zs) else 1
+    order = sorted(order, key=lambda i: (points[i][axis], i))
+    middle = (len(order) + 1) // 2
+    return median_split(points, order[:middle]) + median_split(points, order[middle:])
+
+
+def lavapipe_nodes(first, last, depth):
+    """The runs [first, last] of the list that lavapipe's builder makes the nodes of one depth."""
+    if depth == 0 or first == last:
+        return [(first, last)]
+    split = (first + last) // 2
+    return lavapipe_nodes(first, split, depth - 1) + lavapipe_nodes(split + 1, last, depth - 1)
+
+
+def split_order():
+    import random
+    rng = random.Random(3)
+    n, depth = 400, 3
+    points = [(rng.uniform(0, 1), rng.uniform(0, 1)) for _ in range(n)]
+    colors = ["#c0392b", "#2b6f99", "#27ae60", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b"]
+    s = Svg(760, 400)
+    s.text(20, 24, f"{n} spheres seen from above: the {2 ** depth} nodes of lavapipe's tree at depth {depth}",
+           weight="bold")
+    panels = [("file order (random)", list(range(n))), ("median-split order", median_split(points, list(range(n))))]
+    for p, (title, order) in enumerate(panels):
+        ox, oy, size = 40 + p * 380, 50, 300
+        s.rect(ox, oy, size, size, fill="#f7f7f7", stroke="#bbb")
+        for k, (first, last) in enumerate(lavapipe_nodes(0, n - 1, depth)):
+            run = [points[order[i]] for i in range(first, last + 1)]
+            x0, x1 = min(q[0] for q in run), max(q[0] for q in run)
+            z0, z1 = min(q[1] for q in run), max(q[1] for q in run)
+            c = colors[k]
+            s.rect(ox + x0 * size, oy + z0 * size, (x1 - x0) * size, (z1 - z0) * size, fill=c, stroke=c,
+                   opacity=0.08, width=1.5)
+            for x, z in run:
+                s.circle(ox + x * size, oy + z * size, 2.2, fill=c, stroke=c, width=0.5)
+        s.text(ox + size / 2, oy + size + 22, title, anchor="middle", size=13)
+    s.text(380, 392, "a node's box holds its run of the list: a ray that enters it tests what is inside",
+           anchor="middle", size=12, color="#444")
+    return s.svg()
 
 
 # --- chapter 04: the SBT -------------------------------------------------------------------------
@@ -270,7 +321,7 @@ def lobe():
     return s.svg()
 
 
-FIGURES = {"04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree, "11_lobe.svg": lobe}
+FIGURES = {"03_split_order.svg": split_order, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree, "11_lobe.svg": lobe}
 
 
 def main(argv):
