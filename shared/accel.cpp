@@ -393,9 +393,8 @@ Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAcce
 
 void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
                       const std::vector<VkAccelerationStructureInstanceKHR>& instances,
-                      VkPipelineStageFlags consumerStage) {
-    if (instances.size() != tlas.count || instances.size() * sizeof(instances[0]) > 65536)
-        throw std::runtime_error("recordTlasUpdate: needs the TLAS's own instances, at most 1024");
+                      const std::vector<uint32_t>& changed, VkPipelineStageFlags consumerStage) {
+    if (instances.size() != tlas.count) throw std::runtime_error("recordTlasUpdate: needs the TLAS's own instances");
     // The previous frame's rays and refit must be done with the instances
     // and the TLAS before this frame overwrites them.
     VkMemoryBarrier readsDone{
@@ -407,9 +406,11 @@ void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
                          consumerStage | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,  // earlier users
                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                          0, 1, &readsDone, 0, nullptr, 0, nullptr);
-    // The new transforms travel inside the command buffer (at most 64 KiB,
-    // 1024 instances): no host-visible memory that a frame in flight still reads.
-    vkCmdUpdateBuffer(cmd, tlas.instances.handle, 0, instances.size() * sizeof(instances[0]), instances.data());
+    // The changed instances travel inside the command buffer, 64 bytes each:
+    // no host-visible memory that a frame in flight still reads, and a
+    // million static instances are not sent again.
+    for (uint32_t k : changed)
+        vkCmdUpdateBuffer(cmd, tlas.instances.handle, k * sizeof(instances[0]), sizeof(instances[0]), &instances[k]);
     VkMemoryBarrier written{
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,

@@ -89,11 +89,12 @@ struct Tlas {
 };
 // Builds with ALLOW_UPDATE so that moving objects can be refitted in place.
 Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAccelerationStructureInstanceKHR>& instances);
-// Records new instance data (same instances, only transforms changed) and an
-// in-place update (refit) of the TLAS, ordered after the rays of earlier
-// frames and before `consumerStage` of this one.
+// Records the new data of the instances listed in `changed` (same
+// instances, only their transforms changed) and an in-place update (refit)
+// of the TLAS, ordered after the rays of earlier frames and before
+// `consumerStage` of this one.
 void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
                       const std::vector<VkAccelerationStructureInstanceKHR>& instances,
-                      VkPipelineStageFlags consumerStage);
+                      const std::vector<uint32_t>& changed, VkPipelineStageFlags consumerStage);
 
 }  // namespace rg

@@ -34,6 +34,7 @@ TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
         EXPECT_LE(blas.value("compacted_bytes", 0u), blas.value("size_bytes", 0u));
     }
     EXPECT_EQ(report["top_view"].value("last_frame", 0), frames - 1);
+    EXPECT_GT(report["tlas"].value("update_ms", 0.0), 0.0);  // the refit, timed on its own
 
     // At the centre of each instance's box, the colour of the last instance
     // (in drawing order, the report's order) whose box covers that point.
@@ -62,6 +63,27 @@ TEST(Chapter03, StatisticsMatchTheSceneAndTheTopViewShowsEveryInstance) {
         moving += instances[i].value("moving", false);
     }
     EXPECT_EQ(moving, 1);
+}
+
+// Moving one of many instances: only its 64 bytes are sent, so a TLAS of
+// any size refits (vkCmdUpdateBuffer takes at most 64 KiB, 1024 instances).
+TEST(Chapter03, OneMovingSphereAmongThousandsRefits) {
+    std::string dir = rgtest::outputDir("03_many");
+    std::ofstream scene(dir + "/many.json");
+    scene << R"({"camera": {}, "materials": {"m": {}}, "objects": [)";
+    for (int i = 0; i < 3000; ++i)
+        scene << (i ? "," : "") << R"({"type": "sphere", "radius": 0.4, "material": "m", "center": [)" << i % 60
+              << ", 0, " << i / 60 << "]" << (i == 1234 ? R"(, "moving": true})" : "}");
+    scene << "]}";
+    scene.close();
+    rgtest::RunResult r = rgtest::run(RG_EXE_03, {"--headless", "--validation", "--width", "64", "--height", "36",
+                                                  "--frames", "4", "--scene", dir + "/many.json",
+                                                  "--output", dir + "/many_render.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/many_render.json");
+    EXPECT_EQ(report["tlas"].value("instances", 0u), 3000u);
+    EXPECT_GT(report["tlas"].value("update_ms", 0.0), 0.0);
+    EXPECT_EQ(report.value("validation_messages", -1), 0);
 }
 
 TEST(Chapter03Windowed, RefitsAndPresentsUnderXvfb) {

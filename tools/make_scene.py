@@ -7,6 +7,8 @@
                                                        in random order (a public sample's test)
     --compact   the spheres of each material as one "spheres" object with a flat
                 array x, y, z, r, ... (docs/scene-format.md): for 10^5 spheres and more
+    --moving K  the first K spheres move (chapter 03 refits the TLAS for them every
+                frame: what moving costs); not with --compact, whose spheres are static
 
 The spheres are written in random order, as a scene file written by hand or
 by another tool would be: what the order of the list does to an
@@ -88,16 +90,24 @@ def main(argv):
     packed = "--compact" in args
     if packed:
         args.remove("--compact")
+    moving = 0
+    if "--moving" in args:
+        i = args.index("--moving")
+        moving = int(args[i + 1]) if i + 1 < len(args) and args[i + 1].isdigit() else -1
+        del args[i:i + 2]
     if "--seed" in args:
         i = args.index("--seed")
         seed = int(args[i + 1])
         del args[i:i + 2]
-    if len(args) != 3 or args[0] not in ("floor", "ball") or not args[1].isdigit() or int(args[1]) < 1:
-        print("usage: tools/make_scene.py floor|ball N OUT.json [--seed S] [--compact]", file=sys.stderr)
+    if (len(args) != 3 or args[0] not in ("floor", "ball") or not args[1].isdigit() or int(args[1]) < 1
+            or moving < 0 or (moving and packed)):
+        print("usage: tools/make_scene.py floor|ball N OUT.json [--seed S] [--compact | --moving K]", file=sys.stderr)
         return 2
     rng = random.Random(seed)
     n = int(args[1])
     scene = floor_scene(n, rng) if args[0] == "floor" else ball_scene(n, rng)
+    for o in [o for o in scene["objects"] if o["type"] == "sphere"][:moving]:
+        o["moving"] = True
     if packed:
         scene = compact(scene)
     with open(args[2], "w") as f:
