@@ -21,12 +21,13 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
                  "Build the structures from the objects in the scene file's order instead of median splits");
     if (!reference) return;
     app.add_flag("--reference", opts.reference, "Also render the CPU double-precision reference and report the error");
-    app.add_flag("!--no-ui", opts.ui, "Start the window without its overlay (H shows it)");
+    app.add_flag_callback("--no-ui", [&opts] { opts.ui = false; }, "Start the window without its overlay (H shows it)");
     app.add_option("--layout", opts.groupSpheres,
                    "Acceleration structures: grouped (the static spheres in one BLAS of boxes, the default) "
                    "or instances (one per object)")
         ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"instances", false}, {"grouped", true}},
-                                            CLI::ignore_case));
+                                            CLI::ignore_case))
+        ->option_text("grouped|instances");  // --help names the words, not the map behind them
 }
 
 namespace {

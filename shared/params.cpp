@@ -54,12 +54,18 @@ void Params::addTo(CLI::App& app) const {
         case Param::Kind::Choice: {
             std::map<std::string, int> names;
             for (size_t i = 0; i < p.choices.size(); ++i) names[p.choices[i]] = int(i);
+            std::string words;
+            for (const std::string& c : p.choices) words += (words.empty() ? "" : "|") + c;
             option = app.add_option(p.flag, *p.integer, p.help)
-                         ->transform(CLI::CheckedTransformer(names, CLI::ignore_case));
+                         ->transform(CLI::CheckedTransformer(names, CLI::ignore_case))
+                         ->option_text(words);  // --help names the words, not the numbers behind them
             break;
         }
         case Param::Kind::Toggle:
-            option = app.add_flag((p.inverted ? "!" : "") + p.flag, *p.toggle, p.help);
+            if (p.inverted)  // --no-x sets x to false (a callback: --help shows no "{false}")
+                option = app.add_flag_callback(p.flag, [toggle = p.toggle] { *toggle = false; }, p.help);
+            else
+                option = app.add_flag(p.flag, *p.toggle, p.help);
             break;
         }
         if (p.check) option->check(p.check);

@@ -109,6 +109,8 @@ TEST(Params, OneDeclarationDrivesTheCommandLine) {
     EXPECT_FLOAT_EQ(epsilon, 0.01f);
     EXPECT_FALSE(accumulate);
     EXPECT_NE(app.help().find("(default: stratified)"), std::string::npos) << app.help();  // as declared
+    EXPECT_NE(app.help().find("--pattern uniform|stratified|sobol"), std::string::npos) << app.help();  // words
+    EXPECT_EQ(app.help().find("{false}"), std::string::npos) << app.help();
 
     CLI::App again;
     params.addTo(again);

@@ -52,9 +52,12 @@ TEST_P(CommandLine, MissingDeviceIndexIsAClearError) {
 // A run never writes over its scene file: the report of --output floor.png
 // would be floor.json. One line, exit 2, and the scene is left as it was.
 TEST_P(CommandLine, OutputThatWouldOverwriteTheSceneIsRefused) {
-    if (GetParam().find("01_") != std::string::npos || GetParam().find("02_") != std::string::npos)
-        GTEST_SKIP() << "no --scene before chapter 03";
     std::string dir = rgtest::outputDir("cli_clash_" + std::to_string(std::hash<std::string>{}(GetParam()) % 100000));
+    rgtest::RunResult same = rgtest::run(GetParam(), {"--headless", "--output", dir + "/a.png", "--report", dir + "/a.png"});
+    EXPECT_EQ(same.exitCode, 2) << same.output;
+    EXPECT_NE(same.output.find("--output and --report name the same file"), std::string::npos) << same.output;
+    if (GetParam().find("01_") != std::string::npos || GetParam().find("02_") != std::string::npos)
+        return;  // no --scene before chapter 03
     std::string scene = dir + "/floor.json", text = "{\"objects\": []}\n";  // refused before it is read
     std::ofstream(scene) << text;
     auto contents = [&] { std::stringstream s; s << std::ifstream(scene).rdbuf(); return s.str(); };
@@ -67,9 +70,6 @@ TEST_P(CommandLine, OutputThatWouldOverwriteTheSceneIsRefused) {
         EXPECT_NE(r.output.find("would overwrite the scene file"), std::string::npos) << r.output;
         EXPECT_EQ(contents(), text);
     }
-    rgtest::RunResult same = rgtest::run(GetParam(), {"--headless", "--output", dir + "/a.png", "--report", dir + "/a.png"});
-    EXPECT_EQ(same.exitCode, 2) << same.output;
-    EXPECT_NE(same.output.find("--output and --report name the same file"), std::string::npos) << same.output;
 }
 
 // A run whose output cannot be written fails with one line naming the file
