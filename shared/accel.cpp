@@ -272,7 +272,7 @@ SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scen
                              const std::vector<uint32_t>& objects, uint32_t firstObject) {
     SphereGroup group{.objects = objects, .firstObject = firstObject};
     std::vector<VkAabbPositionsKHR> boxes;
-    for (uint32_t i : objects) {  // in median-split order, the tree lavapipe builds is a good one
+    for (uint32_t i : objects) {  // in the order given: lavapipe's tree is this list (chapter 03)
         // Rounded outwards to float, so that no part of the sphere is outside its box.
         auto down = [](double v) { return std::nextafter(float(v), -INFINITY); };
         auto up = [](double v) { return std::nextafter(float(v), INFINITY); };

@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
                          float(spanX), float(spanZ));
 
         // [region per_frame]
-        uint32_t lastFrame = 0, recorded = 0;
+        uint32_t lastFrame = 0;
         const uint32_t slots = rg::FrameLoop::kFramesInFlight;
         rg::GpuTimer refitTimer(gpu, app.deletion, slots);  // the refit alone: what moving costs
         std::vector<double> refitMs;
@@ -129,9 +129,9 @@ int main(int argc, char** argv) {
             vkCmdDispatch(cmd, (push.width + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE,
                           (push.height + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE, 1);
             lastFrame = frame;
-            recorded = frame + 1;
         });
         // [end]
+        uint32_t recorded = uint32_t(times.gpuMs.size());  // frames recorded, each timed
         for (uint32_t i = std::min(recorded, slots); i > 0; --i)  // the last frames' (the device is idle)
             refitMs.push_back(refitTimer.readMs((recorded - i) % slots));
         std::printf("median frame (refit + top view): GPU %.3f ms over %zu frames; the refit alone %.3f ms\n",
