@@ -78,7 +78,7 @@ TEST(Chapter04, TranslationDoesNotChangeThePicture) {
 }
 
 // The order of the TLAS's instances changes the tree, never the picture:
-// 1,000 spheres in Morton order and in the file's random order.
+// 1,000 spheres in median-split order and in the file's random order.
 TEST(Chapter04, InstanceOrderDoesNotChangeThePicture) {
     const std::string scene = RG_SOURCE_DIR "/tests/scenes/spheres_1000.json";
     rg::ImageError e = compareRuns("04_order", {"--scene", scene}, {"--scene", scene, "--file-order"});
