@@ -109,21 +109,25 @@ def measure(args, sizes):
 
 
 def write_tables(args, sizes, rows):
-    cases = CASES
     def find(n, chapter, layout, order, key):
         for r in rows:
             if (r["n"], r["chapter"], r["layout"], r["order"]) == (n, chapter, layout, order):
                 return r[key]
         return None
 
+    def structures_mb(n):  # chapter 04, median splits: instances, grouped
+        return [(find(n, "04", l, "median", "blas_bytes") + find(n, "04", l, "median", "tlas_bytes")) / 1e6
+                for l in ("instances", "grouped")]
+
+    def build_ms(n):
+        return [find(n, "04", l, "median", "build_ms") for l in ("instances", "grouped")]
+
     with open(os.path.join(args.out, "scaling.dat"), "w") as f:
         f.write("# N  ch04: instances grouped file-order  ch10: instances grouped file-order"
                 "  AS MB: instances grouped  build ms: instances grouped (ch04, median splits)\n")
         for n in sizes:
-            values = [find(n, c, l, o, "gpu_ms") for c in ("04", "10") for l, o in cases]
-            values += [(find(n, "04", l, "median", "blas_bytes") + find(n, "04", l, "median", "tlas_bytes")) / 1e6
-                       for l in ("instances", "grouped")]
-            values += [find(n, "04", l, "median", "build_ms") for l in ("instances", "grouped")]
+            values = [find(n, c, l, o, "gpu_ms") for c in ("04", "10") for l, o in CASES]
+            values += structures_mb(n) + build_ms(n)
             f.write(f"{n} " + " ".join("?" if v is None else f"{v:.6g}" for v in values) + "\n")
 
     def cell(v):
@@ -135,10 +139,8 @@ def write_tables(args, sizes, rows):
                 "| structures MB, instances / grouped | build ms, instances / grouped |\n")
         f.write("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n")
         for n in sizes:
-            ms = [cell(find(n, c, l, o, "gpu_ms")) for c in ("04", "10") for l, o in cases]
-            mb = [(find(n, "04", l, "median", "blas_bytes") + find(n, "04", l, "median", "tlas_bytes")) / 1e6
-                  for l in ("instances", "grouped")]
-            build = [find(n, "04", l, "median", "build_ms") for l in ("instances", "grouped")]
+            ms = [cell(find(n, c, l, o, "gpu_ms")) for c in ("04", "10") for l, o in CASES]
+            mb, build = structures_mb(n), build_ms(n)
             f.write(f"| {n:,} | " + " | ".join(ms) + f" | {cell(mb[0])} / {cell(mb[1])} | "
                     f"{cell(build[0])} / {cell(build[1])} |\n")
         base = find(sizes[0], "04", "grouped", "median", "gpu_ms")
