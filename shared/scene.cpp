@@ -68,15 +68,15 @@ public:
         if (capturing_) return inData(NAN), ++nested_, true;
         if (!std::exchange(afterDataKey_, false)) return json_sax_dom_parser::start_array(n);
         capturing_ = true;
-        numbers_.clear();
+        bytes_.clear();
         return true;
     }
     bool end_array() {
         if (!capturing_) return json_sax_dom_parser::end_array();
         if (nested_ > 0) return --nested_, true;
         capturing_ = false;
-        const auto* bytes = reinterpret_cast<const std::uint8_t*>(numbers_.data());
-        json::binary_t block(std::vector<std::uint8_t>(bytes, bytes + numbers_.size() * sizeof(double)));
+        json::binary_t block(std::move(bytes_));  // moved into the tree, not copied
+        bytes_ = {};
         return json_sax_dom_parser::binary(block);
     }
     bool number_integer(json::number_integer_t v) { return inData(double(v)) || json_sax_dom_parser::number_integer(v); }
@@ -92,7 +92,10 @@ private:
     bool inData(double element) {
         afterDataKey_ = false;
         if (!capturing_) return false;
-        if (nested_ == 0) numbers_.push_back(element);
+        if (nested_ == 0) {
+            const auto* b = reinterpret_cast<const std::uint8_t*>(&element);
+            bytes_.insert(bytes_.end(), b, b + sizeof element);
+        }
         return true;
     }
 
@@ -104,7 +107,7 @@ private:
     size_t depth_ = 0;
     bool afterDataKey_ = false, capturing_ = false;
     int nested_ = 0;  // containers open inside the captured array
-    std::vector<double> numbers_;
+    std::vector<std::uint8_t> bytes_;  // the captured doubles, as the binary value holds them
 };
 
 // Reads one JSON value and names where it came from when it is wrong.
