@@ -230,6 +230,12 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
     choice.properties = properties.properties;
     choice.rayTracing.pNext = nullptr;  // do not keep pointers into this stack frame
     choice.driver = std::string(driver.driverName) + " / " + driver.driverInfo;
+    // An optional feature, used where the device has it: a launch sized by
+    // the GPU (chapter 10's second launch).
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &rt};
+    vkGetPhysicalDeviceFeatures2(choice.handle, &features);
+    choice.traceRaysIndirect = rt.rayTracingPipelineTraceRaysIndirect;
     return choice;
 }
 // [end]
@@ -248,6 +254,7 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, Deleti
     VkPhysicalDeviceRayTracingPipelineFeaturesKHR rayTracing{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR,
         .rayTracingPipeline = VK_TRUE,
+        .rayTracingPipelineTraceRaysIndirect = physical.traceRaysIndirect,  // optional (chapter 10)
     };
     VkPhysicalDeviceAccelerationStructureFeaturesKHR accelerationStructure{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,

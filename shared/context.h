@@ -26,6 +26,7 @@ struct PhysicalDeviceChoice {
     VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracing{};
     VkPhysicalDeviceAccelerationStructurePropertiesKHR accelerationStructure{};
     std::string driver;  // driver name and info, e.g. "llvmpipe / Mesa 25.0.7"
+    bool traceRaysIndirect = false;  // optional: a launch sized by the GPU (chapter 10's second launch)
 };
 
 // The device extensions a ray tracing chapter needs.

@@ -13,6 +13,7 @@ using uint = uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using uvec2 = glm::uvec2;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
 #define RG_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T ": size differs from its GLSL layout")
@@ -131,6 +132,14 @@ struct GpuLight {
 };
 RG_SIZE(GpuLight, 32);
 
+// Chapter 10's launches: one traces every pixel's whole ray tree; or the
+// first traces each pixel's camera ray and queues the trees that go on, and
+// a second launch, as wide as the queue, traces those (docs/10_refraction.md).
+// Each is its own pipeline: the ray generation shader's specialization constant.
+#define LAUNCH_ONE 0u
+#define LAUNCH_FIRST 1u
+#define LAUNCH_QUEUED 2u
+
 // Per frame, as push constants: nothing a frame in flight still reads changes.
 struct RtPush {
     uint frame;
@@ -141,8 +150,37 @@ struct RtPush {
     uint accumulated;    // frames already averaged into the target (chapter 11)
     float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
     uint pad0;
+    uvec2 treeQueue;     // the tree queue's device address, low and high 32 bits (chapter 10)
 };
-RG_SIZE(RtPush, 32);
+RG_SIZE(RtPush, 40);
+
+// A branch of a ray tree still to trace (chapter 10).
+struct Branch {
+    vec3 origin;
+    uint depth;
+    vec3 direction;
+    float pad0;
+    vec3 throughput;  // the share of the pixel's light this branch carries
+    float pad1;
+};
+RG_SIZE(Branch, 48);
+
+// A pixel whose ray tree goes on past its first hit, queued by chapter 10's
+// first launch for the second.
+struct QueuedTree {
+    Branch stack[2];  // the first hit's refracted and reflected branches
+    vec3 radiance;    // the light gathered at the first hit
+    uint pixel;       // y * width + x
+    uint top;         // branches on the stack
+    uint rays;        // rays traced so far
+    uint pad0;
+    uint pad1;
+};
+RG_SIZE(QueuedTree, 128);
+
+// The queue's first 16 bytes: the second launch's VkTraceRaysIndirectCommandKHR
+// (count, 1, 1), whose width the first launch counts up, then the capacity.
+#define TREE_QUEUE_HEADER_BYTES 16u
 
 #ifdef __cplusplus
 }  // namespace rg::gpu

@@ -7,6 +7,7 @@
 #include "rt_report.h"
 #include "rt_scene.h"
 #include "scene.h"
+#include "two_launches.h"
 #include "viewer.h"
 
 namespace rg {
@@ -51,6 +52,14 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // [end]
         RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
                                                shaders);
+        // Chapter 10: two launches, where the driver can size a launch from a
+        // GPU buffer (an optional feature).
+        bool canTwo = settings.launches >= 0 && app.gpu.physical.traceRaysIndirect;
+        if (settings.launches >= 0 && !canTwo)
+            std::printf("note: the driver cannot size a launch on the GPU (rayTracingPipelineTraceRaysIndirect): one launch\n");
+        TwoLaunches two = canTwo ? createTwoLaunches(app.gpu, app.deletion, rt.descriptors.layout, shaders,
+                                                     rt.width * rt.height)
+                                 : TwoLaunches{};
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         Viewer viewer(app, opts, scene, rt, target, loop, params);  // a window's camera, overlay and keys
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
@@ -64,11 +73,18 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .accumulated = settings.accumulate ? unchanged : 0,
                 .epsilon = settings.epsilon,
             };
-            recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
+            if (canTwo)
+                recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, rt.width, rt.height,
+                               Launches(settings.launches), frame);
+            else
+                recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
-        finishRtRun(app, opts, scene, rt, target, times, reference);
+        nlohmann::json launches = {{"launches", two.lastLaunches}};  // the last frame's
+        if (canTwo) launches["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", two.pixels},
+                                                        {"queue_capacity", two.capacity}};
+        finishRtRun(app, opts, scene, rt, target, times, reference, launches);
     });
 }
 

@@ -18,4 +18,14 @@ inline void addFresnelOption(Params& params, RtChapterSettings& s) {
     params.choice("--fresnel", s.fresnelMode, "Fresnel reflectance", {"schlick", "schlick-ior", "exact"});
 }
 
+// --launches: chapter 10 traces the ray trees that go on past the first hit
+// in a second launch (two), in the same launch (one), or chooses each frame
+// from how many pixels have such a tree (auto).
+inline void addLaunchesOption(Params& params, RtChapterSettings& s) {
+    s.launches = 0;
+    params.choice("--launches", s.launches,
+                  "Ray trees past the first hit: in a second launch (two), in the first (one), or chosen per frame",
+                  {"auto", "one", "two"});
+}
+
 }  // namespace rg

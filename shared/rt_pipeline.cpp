@@ -12,9 +12,7 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
                             uint32_t pushConstantBytes, const RtShaders& shaders, uint32_t maxRecursion) {
     RtPipeline p;
     p.maxRecursion = maxRecursion;
-    const VkShaderStageFlags allStages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
-                                         VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
-    p.layout = createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, allStages);
+    p.layout = createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
     // Every stage of the pipeline, and the groups that point into that list:
     // group 0 raygen, then the miss groups, then the hit groups (the SBT's order).
@@ -35,7 +33,13 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
                           .anyHitShader = VK_SHADER_UNUSED_KHR,
                           .intersectionShader = VK_SHADER_UNUSED_KHR});
     };
+    // Specialization: the driver compiles the ray generation shader with
+    // constant 0 fixed, so branches on it cost nothing (and no registers).
+    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(uint32_t)};
+    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(uint32_t),
+                                        .pData = &shaders.raygenConstant};
     general(addStage(VK_SHADER_STAGE_RAYGEN_BIT_KHR, shaders.raygen));
+    stages.back().pSpecializationInfo = &specialization;
     for (const auto& miss : shaders.miss) general(addStage(VK_SHADER_STAGE_MISS_BIT_KHR, miss));
     for (const auto& hit : shaders.hitGroups) {
         uint32_t chit = hit.closestHit.empty() ? VK_SHADER_UNUSED_KHR
@@ -104,10 +108,7 @@ void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set, 
                  uint32_t width, uint32_t height) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout, 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, p.layout,
-                       VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
-                           VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR,
-                       0, pushBytes, push);
+    vkCmdPushConstants(cmd, p.layout, kRtPushStages, 0, pushBytes, push);
     vkCmdTraceRaysKHR(cmd,
                       &p.raygen,    // one record: the ray generation shader
                       &p.miss,      // missIndex in traceRayEXT selects the record

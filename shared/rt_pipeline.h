@@ -18,6 +18,7 @@ struct HitGroup {
 
 struct RtShaders {
     std::string raygen;
+    uint32_t raygenConstant = 0;  // the ray generation shader's specialization constant 0 (chapter 10: its launch)
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
 };
@@ -34,6 +35,11 @@ struct RtPipeline {
 // maxRecursion: rays traced from raygen only need 1 (bounces loop in raygen).
 RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
                             uint32_t pushConstantBytes, const RtShaders& shaders, uint32_t maxRecursion = 1);
+
+// The stages that read the push constants (gpu::RtPush).
+constexpr VkShaderStageFlags kRtPushStages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
+                                             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
+                                             VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
 
 // Binds the pipeline and its set, pushes constants, traces one ray
 // generation invocation per pixel.

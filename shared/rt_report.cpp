@@ -8,7 +8,8 @@
 namespace rg {
 
 nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
-                           const Image& target, const FrameTimes& times, const ReferenceSettings& referenceSettings) {
+                           const Image& target, const FrameTimes& times, const ReferenceSettings& referenceSettings,
+                           const nlohmann::json& extra) {
     FloatImage image = readImage(app.gpu, target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
     std::filesystem::path png(opts.output);
     writePng(opts.output, image);
@@ -65,6 +66,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
         std::printf("vs CPU reference: rmse %.2e, max %.2e, %.4f%% of pixels off by > 1/255, PSNR %.1f dB\n", e.rmse,
                     e.maxAbs, 100 * e.fracOver1_255, e.psnrDb);
     }
+    report.update(extra);
     report["validation_messages"] = validationMessageCount().load();
     writeReport(opts.report, report);
     std::printf("Wrote %s and %s\n", opts.output.c_str(), opts.report.c_str());

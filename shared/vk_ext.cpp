@@ -17,7 +17,8 @@
     X(vkCmdWriteAccelerationStructuresPropertiesKHR)    \
     X(vkCreateRayTracingPipelinesKHR)                   \
     X(vkGetRayTracingShaderGroupHandlesKHR)             \
-    X(vkCmdTraceRaysKHR)
+    X(vkCmdTraceRaysKHR)                                \
+    X(vkCmdTraceRaysIndirectKHR)
 
 namespace {
 #define RG_DECLARE(name) PFN_##name pfn_##name = nullptr;
@@ -82,5 +83,8 @@ VKAPI_ATTR VkResult VKAPI_CALL vkGetRayTracingShaderGroupHandlesKHR(VkDevice d, 
 }
 VKAPI_ATTR void VKAPI_CALL vkCmdTraceRaysKHR(VkCommandBuffer c, const VkStridedDeviceAddressRegionKHR* rg, const VkStridedDeviceAddressRegionKHR* ms, const VkStridedDeviceAddressRegionKHR* ht, const VkStridedDeviceAddressRegionKHR* cl, uint32_t w, uint32_t h, uint32_t d) {
     required(pfn_vkCmdTraceRaysKHR, "vkCmdTraceRaysKHR")(c, rg, ms, ht, cl, w, h, d);
+}
+VKAPI_ATTR void VKAPI_CALL vkCmdTraceRaysIndirectKHR(VkCommandBuffer c, const VkStridedDeviceAddressRegionKHR* rg, const VkStridedDeviceAddressRegionKHR* ms, const VkStridedDeviceAddressRegionKHR* ht, const VkStridedDeviceAddressRegionKHR* cl, VkDeviceAddress a) {
+    required(pfn_vkCmdTraceRaysIndirectKHR, "vkCmdTraceRaysIndirectKHR")(c, rg, ms, ht, cl, a);
 }
 }

@@ -103,4 +103,46 @@ TEST(Chapter10, GroupedLayoutMatchesTheReference) {
     EXPECT_EQ(report["acceleration"]["layout"], "grouped");
 }
 
+// Two launches (the trees past the first hit queued for a second launch)
+// against one: the same image and the same rays, each against the CPU
+// reference with validation on; on mirrors.json more pixels have a tree
+// than the queue holds, so the rest are traced in the first launch; auto
+// picks two launches exactly when few pixels had a tree.
+TEST(Chapter10, TwoLaunchesMatchOneLaunch) {
+    const std::vector<std::pair<std::string, std::string>> scenes = {
+        {"default", ""},
+        {"mirrors", RG_SOURCE_DIR "/assets/scenes/mirrors.json"},
+        {"spheres_1000", RG_SOURCE_DIR "/tests/scenes/spheres_1000.json"},
+        {"glass_grazing", RG_SOURCE_DIR "/tests/scenes/glass_grazing.json"},
+    };
+    for (const auto& [name, scene] : scenes) {
+        SCOPED_TRACE(name);
+        nlohmann::json one = rgtest::expectMatchesReference(RG_EXE_10, scene, "10_one_" + name, {"--launches", "one"});
+        nlohmann::json two = rgtest::expectMatchesReference(RG_EXE_10, scene, "10_two_" + name, {"--launches", "two"});
+        std::string dir = rgtest::outputDir("10_auto_" + name);  // 4 frames: from the third on, auto has a count
+        std::vector<std::string> args = {"--headless", "--validation", "--width", "160", "--height", "90",
+                                         "--frames", "4", "--launches", "auto", "--output", dir + "/out.png"};
+        if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
+        EXPECT_EQ(rgtest::run(RG_EXE_10, args).exitCode, 0);
+        nlohmann::json autoChoice = rgtest::readJson(dir + "/out.json");
+        rgtest::expectCleanReport(autoChoice, "10_refraction", 160, 90);
+        EXPECT_EQ(one["launches"], 1);
+        EXPECT_EQ(two["launches"], 2);
+        EXPECT_EQ(one["rays_per_frame"], two["rays_per_frame"]);
+        const nlohmann::json& trees = one["trees_past_first_hit"];
+        uint32_t count = trees["trees"], pixels = trees["pixels"], capacity = trees["queue_capacity"];
+        EXPECT_GT(count, 0u);
+        EXPECT_EQ(two["trees_past_first_hit"]["trees"], std::min(count, capacity));  // the queue stops at its capacity
+        if (name == "mirrors") EXPECT_GT(count, capacity) << "the queue should overflow here";
+        EXPECT_EQ(autoChoice["launches"], count < 0.06 * pixels ? 2 : 1);  // two_launches.h: kTwoLaunchesBelow
+
+        rgtest::Png a = rgtest::readPng(RG_TEST_OUTPUT_DIR "/10_one_" + name + "/out.png");
+        rgtest::Png b = rgtest::readPng(RG_TEST_OUTPUT_DIR "/10_two_" + name + "/out.png");
+        ASSERT_EQ(a.rgb.size(), b.rgb.size());
+        int worst = 0;
+        for (size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, std::abs(int(a.rgb[i]) - int(b.rgb[i])));
+        EXPECT_LE(worst, 1) << "one and two launches trace the same rays in the same order";
+    }
+}
+
 }  // namespace

@@ -1,6 +1,7 @@
 // Chapter 10 - Refraction (thesis 4.2). Glass splits each ray into a
 // reflected and a refracted branch (Snell's law, Fresnel weights, total
-// internal reflection); the ray generation shader follows both.
+// internal reflection); the ray generation shader follows both, and the
+// trees that go on past the first hit get a launch of their own.
 #include "rt_options.h"
 
 int main(int argc, char** argv) {
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {
             rg::addDepthOption(params, s, 6);
             rg::addFresnelOption(params, s);
+            rg::addLaunchesOption(params, s);
         },
     });
 }

@@ -27,51 +27,63 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
 }
 // [end]
 
-struct Branch {
-    vec3 origin;
-    uint depth;
-    vec3 direction;
-    float pad;
-    vec3 throughput;
-    float pad2;
-};
-
 float maxComponent(vec3 v) { return max(v.r, max(v.g, v.b)); }
 
 // [region tree]
-// The light arriving along one ray, following reflections and refractions
-// depth first; `rays` counts every ray traced.
-vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, inout uint rays) {
-    Branch stack[MAX_DEPTH + 2];  // depth first: at most one pending branch per level
-    int top = 0;
-    stack[top++] = Branch(origin, depth, direction, 0.0, throughput, 0.0);
-    vec3 radiance = vec3(0.0);
-    while (top > 0) {
-        Branch b = stack[--top];
-        traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction);  // depth 0: a camera ray
-        ++rays;
-        if (payload.t < 0.0) {
-            radiance += b.throughput * payload.radiance;
-            continue;
-        }
-        GpuMaterial m = materials[payload.material];
-        vec3 n = facingNormal(payload.normal, b.direction);
-        vec3 p = payload.position;
-        Split s = splitAt(m, payload.frontFace == 1u, n, b.direction);
-        if (s.local > 0.0) radiance += b.throughput * s.local * localShading(m, p, n, -b.direction, rays);
-        if (b.depth >= push.maxDepth) continue;  // the depth limit: deeper light is lost
-        vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
-        // [region refract]
-        if (maxComponent(tr) >= MIN_THROUGHPUT) {
-            // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
-            vec3 t = refract(b.direction, n, s.eta);
-            stack[top++] = Branch(secondaryOrigin(p, -n), b.depth + 1u, normalize(t), 0.0, tr, 0.0);
-        }
-        // [end]
-        if (maxComponent(rf) >= MIN_THROUGHPUT)
-            stack[top++] = Branch(secondaryOrigin(p, n), b.depth + 1u, reflect(b.direction, n), 0.0, rf, 0.0);
+// A ray tree being traced depth first: the branches still to trace (at
+// most one pending per level), the light gathered so far, rays traced.
+// One per invocation, a global: the functions below share it instead of
+// copying its stack in and out as a parameter.
+struct Tree {
+    Branch stack[MAX_DEPTH + 2];
+    int top;
+    vec3 radiance;
+    uint rays;
+};
+Tree tree;
+
+void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
+    tree.stack[0] = Branch(origin, depth, direction, 0.0, throughput, 0.0);
+    tree.top = 1;
+    tree.radiance = vec3(0.0);
+    tree.rays = rays;
+}
+
+// Traces the branch on top of the stack, adds the light it brings, and
+// pushes its own reflected and refracted branches.
+void growBranch() {
+    Branch b = tree.stack[--tree.top];
+    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction);  // depth 0: a camera ray
+    ++tree.rays;
+    if (payload.t < 0.0) {
+        tree.radiance += b.throughput * payload.radiance;
+        return;
     }
-    return radiance;
+    GpuMaterial m = materials[payload.material];
+    vec3 n = facingNormal(payload.normal, b.direction);
+    vec3 p = payload.position;
+    Split s = splitAt(m, payload.frontFace == 1u, n, b.direction);
+    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, n, -b.direction, tree.rays);
+    if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
+    vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
+    // [region refract]
+    if (maxComponent(tr) >= MIN_THROUGHPUT) {
+        // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
+        vec3 t = refract(b.direction, n, s.eta);
+        tree.stack[tree.top++] = Branch(secondaryOrigin(p, -n), b.depth + 1u, normalize(t), 0.0, tr, 0.0);
+    }
+    // [end]
+    if (maxComponent(rf) >= MIN_THROUGHPUT)
+        tree.stack[tree.top++] = Branch(secondaryOrigin(p, n), b.depth + 1u, reflect(b.direction, n), 0.0, rf, 0.0);
+}
+
+// The light arriving along one ray, following reflections and refractions
+// to the depth limit; `rays` counts every ray traced.
+vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, inout uint rays) {
+    plantTree(origin, direction, depth, throughput, rays);
+    while (tree.top > 0) growBranch();
+    rays = tree.rays;
+    return tree.radiance;
 }
 // [end]
 #endif

@@ -19,8 +19,10 @@ vec3 facingNormal(vec3 normal, vec3 direction) {
     return dot(normal, direction) < 0.0 ? normal : -normal;
 }
 
-void writePixel(vec3 color, uint rays) {
-    imageStore(target, ivec2(gl_LaunchIDEXT.xy), vec4(color, 1.0));
-    rayCount[gl_LaunchIDEXT.y * gl_LaunchSizeEXT.x + gl_LaunchIDEXT.x] = rays;
+void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
+    imageStore(target, ivec2(pixel), vec4(color, 1.0));
+    rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;
 }
+
+void writePixel(vec3 color, uint rays) { writePixelAt(gl_LaunchIDEXT.xy, color, rays); }
 #endif
