@@ -49,6 +49,11 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout, V
                   VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                   VkAccessFlags dstAccess);
 
+// One global memory dependency: `srcAccess` writes in `srcStage` made
+// visible to `dstAccess` in `dstStage` (buffers; images need imageBarrier).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
+
 // Folder of the running executable: SPIR-V and assets are found beside it.
 std::filesystem::path executableDir();
 // Loads bin/shaders/<relative>.spv into a shader module.

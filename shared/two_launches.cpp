@@ -23,14 +23,6 @@ TwoLaunches createTwoLaunches(const Gpu& gpu, DeletionQueue& deletion, VkDescrip
     return t;
 }
 
-namespace {
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
-                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
-    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = srcAccess, .dstAccessMask = dstAccess};
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-}  // namespace
-
 // [region two_launches]
 void recordLaunches(VkCommandBuffer cmd, TwoLaunches& t, const RtPipeline& one, VkDescriptorSet set,
                     gpu::RtPush push, uint32_t width, uint32_t height, Launches mode, uint32_t frame) {
