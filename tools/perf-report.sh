@@ -20,11 +20,17 @@ while [ $# -gt 0 ]; do
   shift
 done
 if [ $assemble_only -eq 0 ]; then
-  device=$(vulkaninfo --summary 2>/dev/null | awk -F'= ' '/deviceName/ {print $2; exit}')
-  slug=$(echo "${device:-device}" | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9]\+/-/g; s/^-//; s/-$//' | cut -c1-40)
+  # Measured into a scratch folder first: the device's name, which names
+  # its folder under docs/perf/, is in the report the chapters write.
+  scratch=$(mktemp -d)
+  trap 'rm -rf "$scratch"' EXIT
+  "$build"/bin/perf_report --bin "$build"/bin --out "$scratch" "${args[@]}"
+  device=$(jq -r '.device' "$scratch/perf.json")
+  slug=$(echo "$device" | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9]\+/-/g; s/^-//; s/-$//' | cut -c1-40)
   out=docs/perf/$slug
-  "$build"/bin/perf_report --bin "$build"/bin --out "$out" "${args[@]}"
-  rm -rf "$out/runs"  # logs and images of each run: not kept
+  mkdir -p "$out"
+  cp "$scratch"/perf.json "$scratch"/perf.md "$scratch"/convergence.dat "$out"/  # not runs/: each run's logs and images
+  echo "measured $device into $out"
 fi
 page=docs/performance.md
 # One measured section of a device: its table (TABLE.md), then the plot
