@@ -110,8 +110,8 @@ struct GpuObject {
                     // for an instance of the unit sphere, the real one in a sphere group
     uint shape;     // SHAPE_*
     uint material;  // index into materials
+    float radius;   // world space: the ball of this radius about the centre holds the shape (0: a quad)
     uint pad0;
-    uint pad1;
 };
 RG_SIZE(GpuObject, 32);
 
@@ -159,7 +159,7 @@ struct Branch {
     vec3 origin;
     uint depth;
     vec3 direction;
-    float pad0;
+    float tMax;       // how far its ray can go: twice the radius when it starts inside a sphere
     vec3 throughput;  // the share of the pixel's light this branch carries
     float pad1;
 };

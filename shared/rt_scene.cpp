@@ -7,6 +7,8 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -49,6 +51,17 @@ Buffer createRayCounts(const Gpu& gpu, DeletionQueue& deletion, uint32_t width, 
     return createBuffer(gpu, deletion, VkDeviceSize(width) * height * sizeof(uint32_t),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+// A sphere's radius in world space, rounded up: a ray starting inside goes
+// at most twice this far before it leaves (chapter 10). The format's
+// transforms are rotations times scales, whose columns are orthogonal, so the
+// longest column is the largest stretch (an ellipsoid's longest semi-axis).
+// A quad has no inside: 0.
+float worldRadius(const Object& o) {
+    if (o.type != ShapeType::Sphere) return 0.0f;
+    glm::dmat3 m(o.transform);
+    double longest = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    return std::nextafter(float(longest), INFINITY);
 }
 }  // namespace
 
@@ -95,9 +108,11 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     std::vector<gpu::GpuObject> objects;
     const glm::vec4 unitSphere(0, 0, 0, 1);  // in its instance's object space
     for (const auto& o : scene.objects)
-        objects.push_back({unitSphere, o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material, 0, 0});
+        objects.push_back({unitSphere, o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material,
+                           worldRadius(o), 0});
     for (uint32_t i : rt.group.objects)  // the group's boxes, in their order: the real spheres
-        objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE, scene.objects[i].material, 0, 0});
+        objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE, scene.objects[i].material,
+                           worldRadius(scene.objects[i]), 0});
     std::vector<gpu::GpuMaterial> materials;
     for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m));
     std::vector<gpu::GpuLight> lights;

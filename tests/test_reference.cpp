@@ -5,8 +5,8 @@
 // a surface, a grazing light, tangent rays, overlapping and coincident
 // spheres, the eye on a sphere, a camera inside a sphere or inside glass
 // (where total internal reflection happens), glass at grazing incidence,
-// touching glass spheres, the depth limit, 1,000 spheres), with validation on
-// and no NaN anywhere; and its window under Xvfb.
+// touching glass spheres, a long glass ellipsoid, the depth limit, 1,000
+// spheres), with validation on and no NaN anywhere; and its window under Xvfb.
 #include "harness.h"
 
 #include <cctype>

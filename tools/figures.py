@@ -4,6 +4,7 @@
   03_split_order.svg  the boxes lavapipe's midpoint builder makes of a list in file order and in median-split order
   04_sbt_layout.svg   the shader binding table of chapters 06-11 and how a ray picks its record
   10_ray_tree.svg     chapter 10's ray tree through a glass sphere (n = 1.517), traced here exactly
+  10_inside_reach.svg chapter 10's tMax for a ray inside a sphere, and the boxes it skips
   11_lobe.svg         64 directions of chapter 11's lobe: the scrambled Sobol points, mapped
 
     tools/figures.py            write them
@@ -244,6 +245,52 @@ def ray_tree():
     return s.svg()
 
 
+def inside_reach():
+    """Chapter 10's bound on a ray inside a sphere: tMax = 2r, and the boxes beyond it."""
+    n_glass = 1.517
+    s = Svg(760, 320)
+    s.text(20, 24, "A ray that starts inside a sphere leaves it within 2r: chapter 10 makes 2r its tMax",
+           weight="bold")
+    s.text(20, 44, "Traversal skips every box that starts beyond tMax, however many spheres lie further along "
+           "the line", size=12, color="#444")
+    c, r = (250.0, 175.0), 80.0
+    s.circle(*c, r, fill="#e8f4fb", stroke="#2b6f99", width=2)
+    s.line(c[0] - r, c[1] + r + 14, c[0] + r, c[1] + r + 14, color="#2b6f99", width=1.2)
+    s.text(c[0], c[1] + r + 30, "2r: no two points of the sphere are farther apart", anchor="middle",
+           color="#2b6f99", size=12)
+    a = math.radians(-25)  # upwards, passing 0.85 r from the centre: the chord is 0.83 of 2r
+    d = (math.cos(a), math.sin(a))
+    eye = (c[0] - 230 * d[0] + 0.85 * r * d[1], c[1] - 230 * d[1] - 0.85 * r * d[0])
+    ox, oy = eye[0] - c[0], eye[1] - c[1]
+    b = ox * d[0] + oy * d[1]
+    t = -b - math.sqrt(b * b - (ox * ox + oy * oy - r * r))  # the near intersection
+    p1 = (eye[0] + t * d[0], eye[1] + t * d[1])
+    s.line(*eye, *p1, color="#111", width=2, arrow=True)
+    s.text(eye[0] + 6, eye[1] + 20, "a ray hits the glass")
+    n1 = ((p1[0] - c[0]) / r, (p1[1] - c[1]) / r)
+    t1 = refract(d, n1, 1 / n_glass)
+    p2 = exit_point(p1, t1, c, r)
+    reach = (p1[0] + 2 * r * t1[0], p1[1] + 2 * r * t1[1])
+    s.line(*p1, *p2, color="#1e7b4f", width=2.2, arrow=True)
+    s.line(*p2, *reach, color="#1e7b4f", width=1.2)
+    s.line(*reach, p1[0] + 560 * t1[0], p1[1] + 560 * t1[1], color="#999", width=1.2, dash="5,4")
+    s.line(reach[0] - 7 * t1[1], reach[1] + 7 * t1[0], reach[0] + 7 * t1[1], reach[1] - 7 * t1[0],
+           color="#1e7b4f", width=2)
+    s.text(reach[0], reach[1] - 14, "tMax = 2r", anchor="middle", color="#1e7b4f", size=12, weight="bold")
+    s.text(p2[0] - 4, p2[1] + 22, "closest hit: where it leaves", anchor="middle", color="#1e7b4f", size=12)
+    for p in (p1, p2):
+        s.circle(*p, 3.5, fill="#111", stroke="#111")
+    for along, side, radius in ((230, -22, 16), (300, 18, 20), (370, -12, 14), (440, 24, 18)):
+        x = p1[0] + along * t1[0] - side * t1[1]
+        y = p1[1] + along * t1[1] + side * t1[0]
+        s.rect(x - radius, y - radius, 2 * radius, 2 * radius, fill="#f2f2f2", stroke="#bbb")
+        s.circle(x, y, radius, fill="#fbe9e7", stroke="#c0392b", width=1.2)
+    s.text(560, reach[1] + 60, "boxes beyond tMax: never opened", anchor="middle", color="#777", size=12)
+    s.text(20, 310, "With tMax infinite the search may open them before it finds the exit; the bound only "
+           "ends the search sooner: the closest hit is the same.", size=12, color="#444")
+    return s.svg()
+
+
 # --- chapter 11: the lobe -------------------------------------------------------------------------
 def pcg_hash(v):
     state = (v * 747796405 + 2891336453) & M32
@@ -321,7 +368,8 @@ def lobe():
     return s.svg()
 
 
-FIGURES = {"03_split_order.svg": split_order, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree, "11_lobe.svg": lobe}
+FIGURES = {"03_split_order.svg": split_order, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree,
+           "10_inside_reach.svg": inside_reach, "11_lobe.svg": lobe}
 
 
 def main(argv):

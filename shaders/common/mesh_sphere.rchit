@@ -30,4 +30,5 @@ void main() {
     payload.object = gl_InstanceCustomIndexEXT;
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(faceNormal, gl_ObjectRayDirectionEXT) < 0.0 ? 1u : 0u;
+    payload.radius = 0.0;  // no bound: interpolated normals can refract a ray out of the mesh
 }

@@ -11,6 +11,7 @@ struct HitPayload {
     vec3 position;   // world-space hit point, re-projected onto the surface
     uint object;
     uint frontFace;  // 1: the ray hit the outside (front) of the surface
+    float radius;    // world-space radius of the sphere hit, 0 for other shapes (chapter 10)
 };
 // [end]
 #endif

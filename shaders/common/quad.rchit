@@ -17,5 +17,6 @@ void main() {
     payload.object = gl_InstanceCustomIndexEXT;
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
+    payload.radius = 0.0;  // a quad has no inside
 }
 // [end]

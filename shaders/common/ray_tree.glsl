@@ -29,6 +29,17 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
 
 float maxComponent(vec3 v) { return max(v.r, max(v.g, v.b)); }
 
+// [region inside_reach]
+// A ray that starts inside a sphere of radius r leaves it within a diameter
+// (plus its origin's offset from the hit point p and p's rounding): its
+// tMax, so that traversal skips every box beyond (a million spheres around).
+// r = 0: not a sphere, no bound.
+float insideReach(vec3 origin, vec3 p, float r) {
+    if (r <= 0.0) return kInfinity;
+    return 2.002 * r + distance(origin, p) + 1e-6 * maxComponent(abs(p));
+}
+// [end]
+
 // [region tree]
 // A ray tree being traced depth first: the branches still to trace (at
 // most one pending per level), the light gathered so far, rays traced.
@@ -43,7 +54,7 @@ struct Tree {
 Tree tree;
 
 void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
-    tree.stack[0] = Branch(origin, depth, direction, 0.0, throughput, 0.0);
+    tree.stack[0] = Branch(origin, depth, direction, kInfinity, throughput, 0.0);
     tree.top = 1;
     tree.radiance = vec3(0.0);
     tree.rays = rays;
@@ -53,7 +64,7 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
 // pushes its own reflected and refracted branches.
 void growBranch() {
     Branch b = tree.stack[--tree.top];
-    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction);  // depth 0: a camera ray
+    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);  // depth 0: a camera ray
     ++tree.rays;
     if (payload.t < 0.0) {
         tree.radiance += b.throughput * payload.radiance;
@@ -62,19 +73,25 @@ void growBranch() {
     GpuMaterial m = materials[payload.material];
     vec3 n = facingNormal(payload.normal, b.direction);
     vec3 p = payload.position;
-    Split s = splitAt(m, payload.frontFace == 1u, n, b.direction);
+    float radius = payload.radius;
+    bool entering = payload.frontFace == 1u;
+    Split s = splitAt(m, entering, n, b.direction);
     if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, n, -b.direction, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
-        vec3 t = refract(b.direction, n, s.eta);
-        tree.stack[tree.top++] = Branch(secondaryOrigin(p, -n), b.depth + 1u, normalize(t), 0.0, tr, 0.0);
+        vec3 t = refract(b.direction, n, s.eta), o = secondaryOrigin(p, -n);
+        float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
+        tree.stack[tree.top++] = Branch(o, b.depth + 1u, normalize(t), tMax, tr, 0.0);
     }
     // [end]
-    if (maxComponent(rf) >= MIN_THROUGHPUT)
-        tree.stack[tree.top++] = Branch(secondaryOrigin(p, n), b.depth + 1u, reflect(b.direction, n), 0.0, rf, 0.0);
+    if (maxComponent(rf) >= MIN_THROUGHPUT) {
+        vec3 o = secondaryOrigin(p, n);
+        float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
+        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflect(b.direction, n), tMax, rf, 0.0);
+    }
 }
 
 // The light arriving along one ray, following reflections and refractions

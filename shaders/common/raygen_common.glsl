@@ -8,10 +8,12 @@ layout(binding = RT_BINDING_RAY_COUNT, std430) writeonly buffer RayCount { uint 
 layout(location = 0) rayPayloadEXT HitPayload payload;
 
 // The closest hit along the ray into `payload` (a miss leaves the sky's radiance).
-void traceClosest(vec3 origin, float tMin, vec3 direction) {
+void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax) {
     traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin, tMin, direction,
-                kInfinity, 0);
+                tMax, 0);
 }
+
+void traceClosest(vec3 origin, float tMin, vec3 direction) { traceClosest(origin, tMin, direction, kInfinity); }
 
 // The geometric normal turned toward the ray's origin: opaque surfaces are
 // lit on the side they are seen from.

@@ -23,5 +23,6 @@ void main() {
     payload.object = index;
     payload.material = objects[index].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
+    payload.radius = objects[index].radius;
 }
 // [end]
