@@ -82,7 +82,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
         nlohmann::json launches = {{"launches", two.lastLaunches}};  // the last frame's
-        if (canTwo) launches["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", two.pixels},
+        if (canTwo) launches["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},
                                                         {"queue_capacity", two.capacity}};
         finishRtRun(app, opts, scene, rt, target, times, reference, launches);
     });

@@ -7,7 +7,7 @@ namespace rg {
 
 TwoLaunches createTwoLaunches(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
                               RtShaders shaders, uint32_t pixels) {
-    TwoLaunches t{.capacity = std::max(1u, pixels / 4), .pixels = pixels};
+    TwoLaunches t{.capacity = std::max(1u, pixels / 4)};
     shaders.raygenConstant = LAUNCH_FIRST;
     t.first = createRtPipeline(gpu, deletion, setLayout, sizeof(gpu::RtPush), shaders);
     shaders.raygenConstant = LAUNCH_QUEUED;
@@ -32,7 +32,7 @@ void recordLaunches(VkCommandBuffer cmd, TwoLaunches& t, const RtPipeline& one, 
     uint32_t trees = static_cast<const uint32_t*>(t.counts.mapped)[slot];
     bool counted = frame >= FrameLoop::kFramesInFlight;
     bool two = mode == Launches::Two ||
-               (mode == Launches::Auto && counted && trees < kTwoLaunchesBelow * t.pixels);
+               (mode == Launches::Auto && counted && trees < kTwoLaunchesBelow * width * height);
     t.lastFrame = frame;
     t.lastLaunches = two ? 2 : 1;
 

@@ -24,7 +24,7 @@ struct TwoLaunches {
     RtPipeline first, queued;  // the chapter's shaders, the ray generation shader specialized for each launch
     Buffer queue;              // TREE_QUEUE_HEADER_BYTES of header, then gpu::QueuedTree[capacity]
     Buffer counts;             // host-visible: each frame slot's count of trees, copied at the frame's end
-    uint32_t capacity = 0, pixels = 0;
+    uint32_t capacity = 0;     // trees the queue holds: a quarter of the pixels it was made for
     uint32_t lastFrame = 0, lastLaunches = 1;  // what the last recorded frame did
 };
 
