@@ -224,8 +224,6 @@ int report(int argc, char** argv) {
                 out[p]["samples"].push_back(counts[i]), out[p]["gpu_ms"].push_back(fastest[p][i]);
                 out[p]["rmse"].push_back(rmseOf(tagPrefix + p + "_" + std::to_string(counts[i]), against));
             }
-        }
-        for (const char* p : patterns) {
             std::vector<double> n = out[p]["samples"], err = out[p]["rmse"];
             out[p]["slope"] = n.size() > 1 ? logSlope(n, err) : 0.0;
         }
