@@ -321,24 +321,30 @@ int report(int argc, char** argv) {
                << " |\n";
     md << "\nLog-log slope of RMSE against samples in one frame (-0.5 is independent random sampling):";
     for (const char* p : patterns) md << " " << p << " " << fmt("%.2f", P[p]["slope"].get<double>()) << ";";
-    md << "\n\nAt equal GPU time, RMSE relative to uniform random (at uniform's times for 1, 4, 9, 16, 25, 64, 100 "
-          "samples):\n\n";
-    for (const char* p : {"stratified", "hammersley", "sobol"}) {
-        md << "- " << p << ":";
-        for (double r : P[p]["equal_time_ratio_to_uniform"]) md << " " << fmt("%.2f", r);
-        md << "\n";
-    }
+    // Uniform's sample counts as measured, then each pattern's RMSE relative
+    // to uniform's at those counts' times.
+    auto uniformCounts = [](const json& patterns) {
+        std::string list;
+        for (const auto& n : patterns["uniform"]["samples"]) list += (list.empty() ? "" : ", ") + n.dump();
+        return list;
+    };
+    auto equalTimeRatios = [&](const json& patterns) {
+        for (const char* p : {"stratified", "hammersley", "sobol"}) {
+            md << "- " << p << ":";
+            for (double r : patterns[p]["equal_time_ratio_to_uniform"]) md << " " << fmt("%.2f", r);
+            md << "\n";
+        }
+    };
+    md << "\n\nAt equal GPU time, RMSE relative to uniform random (at uniform's times for " << uniformCounts(P)
+       << " samples):\n\n";
+    equalTimeRatios(P);
     const json& SP = data["study"]["smooth"]["patterns"];
     md << "\nThe same on a smooth integrand (`rough_sky.json`, a rough mirror that reflects only the sky's gradient; "
        << "reference: 2 x " << smoothSamples << " samples, its RMS error " << fmt("%.1e", smoothError)
-       << "). RMSE of uniform random at 1, 4, 9, 16, 25, 64, 100 samples:";
+       << "). RMSE of uniform random at " << uniformCounts(SP) << " samples:";
     for (double e : SP["uniform"]["rmse"]) md << " " << fmt("%.2e", e);
     md << "; the others relative to it at equal GPU time:\n\n";
-    for (const char* p : {"stratified", "hammersley", "sobol"}) {
-        md << "- " << p << ":";
-        for (double r : SP[p]["equal_time_ratio_to_uniform"]) md << " " << fmt("%.2f", r);
-        md << "\n";
-    }
+    equalTimeRatios(SP);
     md << "\n**Fresnel** (chapter 10, `glass_sphere.json`, " << width << "x" << height << "): Schlick with f0 from the "
        << "IOR " << fmt("%.3f", fresnel["schlick-ior"].value("median", 0.0)) << " ms, exact "
        << fmt("%.3f", fresnel["exact"].value("median", 0.0)) << " ms; the two images differ by RMSE "
