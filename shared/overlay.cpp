@@ -12,6 +12,32 @@
 
 namespace rg {
 
+namespace {
+// The one place where Dear ImGui's versions differ for RayGlass: how the
+// Vulkan backend takes the render pass and uploads its font texture.
+// Debian 12 has 1.86, Debian 13 (and Ubuntu 24.04) 1.90.1: both tested.
+// 1.90.3 to 1.91 take the render pass in the init info: written from their
+// header, not run here. 1.92 manages textures itself: not supported yet.
+void initVulkanBackend(const Gpu& gpu, ImGui_ImplVulkan_InitInfo& info, VkRenderPass renderPass) {
+#if IMGUI_VERSION_NUM >= 19200
+#error "Dear ImGui 1.92 or newer: RayGlass's overlay supports 1.86 to 1.91 (shared/overlay.cpp)"
+#elif IMGUI_VERSION_NUM >= 19030
+    info.RenderPass = renderPass;
+    bool ok = ImGui_ImplVulkan_Init(&info);
+#else
+    bool ok = ImGui_ImplVulkan_Init(&info, renderPass);
+#endif
+    if (!ok) throw std::runtime_error("ImGui: Vulkan backend failed");
+#if IMGUI_VERSION_NUM >= 19000
+    (void)gpu;  // 1.90 records and waits for the upload on info.Queue itself
+    if (!ImGui_ImplVulkan_CreateFontsTexture()) throw std::runtime_error("ImGui: font upload failed");
+#else
+    submitOnce(gpu, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+#endif
+}
+}  // namespace
+
 Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
     // The font texture's one descriptor (the 1.86 backend allocates one set).
     VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 4};
@@ -63,21 +89,18 @@ Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
     if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) throw std::runtime_error("ImGui: GLFW backend failed");
 
     uint32_t images = uint32_t(window.images.size());
-    ImGui_ImplVulkan_InitInfo info{
-        .Instance = gpu.instance,
-        .PhysicalDevice = gpu.physical.handle,
-        .Device = gpu.device,
-        .QueueFamily = gpu.physical.queueFamily,
-        .Queue = gpu.queue,
-        .DescriptorPool = pool_,
-        .MinImageCount = 2,
-        .ImageCount = images < 2 ? 2 : images,  // vertex buffers it cycles: at least the frames in flight
-        .MSAASamples = VK_SAMPLE_COUNT_1_BIT,
-        .CheckVkResultFn = [](VkResult r) { VK_CHECK(r); },
-    };
-    if (!ImGui_ImplVulkan_Init(&info, renderPass_)) throw std::runtime_error("ImGui: Vulkan backend failed");
-    submitOnce(gpu, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
-    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    ImGui_ImplVulkan_InitInfo info{};  // fields set by name: their order differs between versions
+    info.Instance = gpu.instance;
+    info.PhysicalDevice = gpu.physical.handle;
+    info.Device = gpu.device;
+    info.QueueFamily = gpu.physical.queueFamily;
+    info.Queue = gpu.queue;
+    info.DescriptorPool = pool_;
+    info.MinImageCount = 2;
+    info.ImageCount = images < 2 ? 2 : images;  // vertex buffers it cycles: at least the frames in flight
+    info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+    info.CheckVkResultFn = [](VkResult r) { VK_CHECK(r); };
+    initVulkanBackend(gpu, info, renderPass_);
     swapchainRecreated();
 }
 
