@@ -133,7 +133,9 @@ TEST(Chapter10, TwoLaunchesMatchOneLaunch) {
         uint32_t count = trees["trees"], pixels = trees["pixels"], capacity = trees["queue_capacity"];
         EXPECT_GT(count, 0u);
         EXPECT_EQ(two["trees_past_first_hit"]["trees"], std::min(count, capacity));  // the queue stops at its capacity
-        if (name == "mirrors") EXPECT_GT(count, capacity) << "the queue should overflow here";
+        if (name == "mirrors") {
+            EXPECT_GT(count, capacity) << "the queue should overflow here";
+        }
         EXPECT_EQ(autoChoice["launches"], count < 0.06 * pixels ? 2 : 1);  // two_launches.h: kTwoLaunchesBelow
 
         rgtest::Png a = rgtest::readPng(RG_TEST_OUTPUT_DIR "/10_one_" + name + "/out.png");
