@@ -435,7 +435,15 @@ void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
     VkAccelerationStructureBuildRangeInfoKHR range{.primitiveCount = tlas.count};
     const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
     vkCmdBuildAccelerationStructuresKHR(cmd, 1, &update, &ranges);
-    accelBarrier(cmd, consumerStage, VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_SHADER_READ_BIT);
+    // Ray tracing shaders read the TLAS itself. Any other shader stage can
+    // read a structure only through ray queries, so without that feature a
+    // barrier may not name ACCELERATION_STRUCTURE_READ for it
+    // (VUID-vkCmdPipelineBarrier-dstAccessMask-06257): chapter 03's compute
+    // shader reads the instance buffer (SHADER_READ), not the structure.
+    VkAccessFlags reads = VK_ACCESS_SHADER_READ_BIT;
+    if (consumerStage & VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR)
+        reads |= VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
+    accelBarrier(cmd, consumerStage, reads);
 }
 // [end]
 
