@@ -23,20 +23,22 @@ double recent(const std::vector<double>& values) {
     return median(std::vector<double>(values.end() - n, values.end()));
 }
 
-// Uploads recorded into the frame: the previous frames' shaders must have
-// read the old values first, and this frame's shaders must see the new ones.
+// Uploads recorded into the frame. Two frames are in flight, and both write
+// the same camera buffer: before this frame's write, the previous frames'
+// shaders must be done reading the old values (write after read: execution
+// order is enough) and their own uploads must be done writing (write after
+// write: a memory dependency, or the older write may land last). One buffer
+// and a barrier rather than one buffer per frame in flight: the data travels
+// inside the command buffer, so the CPU never races the GPU, and the
+// shaders' descriptor sets stay one per chapter.
 void beforeUpload(VkCommandBuffer cmd) {
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                         0, nullptr, 0, nullptr, 0, nullptr);  // write after read: execution order is enough
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_WRITE_BIT,  // the last upload's writes
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
 }
-void afterUpload(VkCommandBuffer cmd) {
-    VkMemoryBarrier written{
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT,
-    };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1,
-                         &written, 0, nullptr, 0, nullptr);
+void afterUpload(VkCommandBuffer cmd) {  // read after write: this frame's shaders see the new values
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
 }
 }  // namespace
 
