@@ -21,7 +21,13 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFl
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
     validationMessageCount()++;
     const char* level = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
-    std::fprintf(stderr, "[validation %s] %s\n", level, data->pMessage);
+    // Layers since 1.4 leave the rule's name (VUID-..., SYNC-HAZARD-...)
+    // out of the message text; it is the message's id name.
+    const char* id = data->pMessageIdName ? data->pMessageIdName : "";
+    if (*id && !std::strstr(data->pMessage, id))
+        std::fprintf(stderr, "[validation %s] [ %s ] %s\n", level, id, data->pMessage);
+    else
+        std::fprintf(stderr, "[validation %s] %s\n", level, data->pMessage);
     return VK_FALSE;  // never abort the call: report it and go on
 }
 
@@ -32,6 +38,16 @@ bool hasLayer(const char* name) {
     VK_CHECK(vkEnumerateInstanceLayerProperties(&count, layers.data()));
     for (const auto& layer : layers)
         if (std::strcmp(layer.layerName, name) == 0) return true;
+    return false;
+}
+
+[[maybe_unused]] bool layerHasExtension(const char* layer, const char* extension) {
+    uint32_t count = 0;
+    VK_CHECK(vkEnumerateInstanceExtensionProperties(layer, &count, nullptr));
+    std::vector<VkExtensionProperties> extensions(count);
+    VK_CHECK(vkEnumerateInstanceExtensionProperties(layer, &count, extensions.data()));
+    for (const auto& e : extensions)
+        if (std::strcmp(e.extensionName, extension) == 0) return true;
     return false;
 }
 
@@ -56,6 +72,30 @@ VkInstance createInstance(const std::string& appName, bool validation,
         .enabledValidationFeatureCount = 1,
         .pEnabledValidationFeatures = enables,
     };
+#ifdef VK_EXT_layer_settings  // Vulkan headers >= 1.3.268 (Debian 13; Debian 12 has 1.3.239)
+    // Since layer 1.4.3xx, synchronization validation sees what shaders read
+    // and write through descriptors only with this setting (its default is
+    // off): without it chapter 02's missing barrier goes unreported. Older
+    // layers (Debian 12's 1.3.239) always track those accesses and have no
+    // VK_EXT_layer_settings.
+    VkBool32 on = VK_TRUE;
+    VkLayerSettingEXT shaderAccesses{
+        .pLayerName = validationLayer,
+        .pSettingName = "syncval_shader_accesses_heuristic",
+        .type = VK_LAYER_SETTING_TYPE_BOOL32_EXT,
+        .valueCount = 1,
+        .pValues = &on,
+    };
+    VkLayerSettingsCreateInfoEXT settings{
+        .sType = VK_STRUCTURE_TYPE_LAYER_SETTINGS_CREATE_INFO_EXT,
+        .settingCount = 1,
+        .pSettings = &shaderAccesses,
+    };
+    if (validation && layerHasExtension(validationLayer, VK_EXT_LAYER_SETTINGS_EXTENSION_NAME)) {
+        extensions.push_back(VK_EXT_LAYER_SETTINGS_EXTENSION_NAME);
+        features.pNext = &settings;
+    }
+#endif
     VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
         .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
         .pNext = &features,
