@@ -101,6 +101,12 @@ def check_page(d, site, page, docs, failures):
 def check_search(d, site, failures):
     d.get((site / "index.html").as_uri())
     box = d.find_element(By.CSS_SELECTOR, "input.md-search__input")
+    if not box.is_displayed():  # Material 9 (Debian 13) folds search into the header's button
+        for toggle in d.find_elements(By.CSS_SELECTOR, 'label[for="__search"]'):
+            if toggle.is_displayed():
+                toggle.click()
+                break
+        WebDriverWait(d, 5).until(lambda d: box.is_displayed())
     box.click()
     box.send_keys("Schlick")
     try:

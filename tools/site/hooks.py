@@ -7,7 +7,7 @@
 - KaTeX is copied from Debian's libjs-katex into the site: no CDN.
 - Search from disk: browsers refuse fetch() and workers on file:// URLs, so the
   search index and Material's search worker are also written as scripts that
-  tools/site/theme/main.html loads; assets/rayglass.js hands them to Material.
+  tools/site/theme/main.html loads and hands to Material (8 and 9 differ there).
 """
 import atexit
 import json
@@ -108,7 +108,7 @@ def on_post_build(config):
         shutil.copy(KATEX / name, dest / name)
     shutil.copytree(KATEX / "fonts", dest / "fonts", dirs_exist_ok=True)
     index = (site / "search" / "search_index.json").read_text()
-    (site / "search" / "search_index.js").write_text(f"var __rgSearchIndex = {index};\n")
+    (site / "search" / "search_index.js").write_text(f"var __index = {index};\n")  # the name Material 9 reads
     workers = sorted((site / "assets" / "javascripts" / "workers").glob("search.*.min.js"))
     if len(workers) != 1:
         raise PluginError("expected one Material search worker, found " + str(len(workers)))
