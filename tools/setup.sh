@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing (Debian 12), builds RayGlass, runs every
+# Installs what is missing (Debian 12 or 13), builds RayGlass, runs every
 # chapter headless with validation, writing each chapter's PNG and JSON
 # report into one folder (default: out/) and printing one line per chapter,
 # and builds the docs site into out/site/ (tools/site.sh).
@@ -34,7 +34,7 @@ sudo_cmd=()
 
 need_what() {
   echo "RayGlass needs: a C++20 compiler, CMake >= 3.22, the Vulkan loader and headers, glslangValidator,"
-  echo "GLFW 3.3, GLM, stb, nlohmann-json, CLI11, GoogleTest, Dear ImGui 1.86 (the overlay), Xvfb and xdotool (window tests),"
+  echo "GLFW 3.3 or 3.4, GLM, stb, nlohmann-json, CLI11, GoogleTest, Dear ImGui 1.86 to 1.91 (the overlay), Xvfb and xdotool (window tests),"
   echo "mkdocs with mkdocs-material, pymdownx and KaTeX (the docs site), Chromium + chromedriver + selenium (its tests),"
   echo "and a Vulkan driver with VK_KHR_ray_tracing_pipeline (no GPU: Mesa lavapipe >= $min_mesa)."
 }
@@ -44,23 +44,13 @@ mesa_ok() {
   local v; v=$(mesa_version)
   [ -n "$v" ] && dpkg --compare-versions "$v" ge "$min_mesa"
 }
-
-# The Debian archive URI of this system's existing apt source for `codename`
-# (deb822 .sources files and one-line .list files both count).
-debian_uri() {
-  local codename=$1 f
-  for f in /etc/apt/sources.list.d/*.sources; do
-    [ -f "$f" ] || continue
-    awk -v c="$codename" '
-      /^[[:space:]]*$/ { if (uri && suite) { print uri; exit } uri=""; suite="" ; next }
-      tolower($1)=="uris:" { for (i=2;i<=NF;i++) if ($i ~ /debian\/?$/) uri=$i }
-      tolower($1)=="suites:" { for (i=2;i<=NF;i++) if ($i==c) suite=1 }
-      END { if (uri && suite) print uri }' "$f" | head -n1
-  done | head -n1 | grep . && return 0
-  cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null |
-    awk -v c="$codename" '$1=="deb" { for (i=2;i<=NF;i++) if ($i ~ /^[a-z]+:/ && $(i+1)==c && $i ~ /debian\/?$/) { print $i; exit } }' |
-    head -n1 | grep .
+# The release's own candidate, before any backports suite is added.
+release_mesa_ok() {
+  local v; v=$(apt-cache policy mesa-vulkan-drivers 2>/dev/null | awk '$1 == "Candidate:" { print $2 }')
+  [ -n "$v" ] && [ "$v" != "(none)" ] && dpkg --compare-versions "$v" ge "$min_mesa"
 }
+
+. tools/lib/apt-source.sh  # debian_uri
 
 install_deps() {
   if ! command -v dpkg >/dev/null || [ ! -f /etc/debian_version ]; then
@@ -79,6 +69,11 @@ install_deps() {
   if [ ${#missing[@]} -gt 0 ]; then
     echo "== installing: ${missing[*]}"
     "${sudo_cmd[@]}" apt-get install -y -q "${missing[@]}"
+  fi
+  if ! mesa_ok && release_mesa_ok; then
+    # Debian 13's own Mesa (25.0) has lavapipe with ray tracing.
+    echo "== installing mesa-vulkan-drivers"
+    "${sudo_cmd[@]}" apt-get install -y -q mesa-vulkan-drivers
   fi
   if ! mesa_ok; then
     # Debian 12's own Mesa (22.3) has no ray tracing in lavapipe; the
