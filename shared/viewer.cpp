@@ -23,6 +23,7 @@ double recent(const std::vector<double>& values) {
     return median(std::vector<double>(values.end() - n, values.end()));
 }
 
+// [region viewer_uploads]
 // Uploads recorded into the frame. Two frames are in flight, and both write
 // the same camera buffer: before this frame's write, the previous frames'
 // shaders must be done reading the old values (write after read: execution
@@ -40,6 +41,7 @@ void afterUpload(VkCommandBuffer cmd) {  // read after write: this frame's shade
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
 }
+// [end]
 }  // namespace
 
 Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target, FrameLoop& loop, Params params)
