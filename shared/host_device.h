@@ -101,7 +101,7 @@ struct RtCamera {
     vec4 skyBottom;
     vec4 ambient;      // I_a (chapter 05)
     uvec4 counts;      // sky width, sky height (0: gradient), light count, object count
-    vec4 scale;        // x: the scene's size (for offsets); y, z, w unused
+    vec4 eye;          // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface); y, z, w unused
 };
 RG_SIZE(RtCamera, 224);
 

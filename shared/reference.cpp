@@ -17,6 +17,10 @@ namespace rg {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+// 64 units of double's relative rounding (2^-53): the reference's error
+// bounds, the GPU's (hit_error.glsl) in double precision.
+constexpr double kRounding = 64.0 / 9007199254740992.0;
+double maxMagnitude(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 }
 
 bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, double& t1) {
@@ -39,7 +43,13 @@ bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, d
 }
 
 ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
-    for (const auto& o : scene.objects) worldToObject_.push_back(glm::inverse(o.transform));
+    for (const auto& o : scene.objects) {
+        worldToObject_.push_back(glm::inverse(o.transform));
+        const glm::dmat4& m = o.transform;
+        objectSize_.push_back(maxMagnitude(glm::dvec3(m[3])) +
+                              std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                                        glm::length(glm::dvec3(m[2]))}));
+    }
     buildBvh();
     SkyTexels sky = loadSky(scene);
     skyWidth_ = sky.width;
@@ -79,6 +89,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     best.object = i;
     best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
     best.frontFace = obj.type == ShapeType::Sphere ? front : glm::dot(best.normal, direction) < 0;
+    best.error = kRounding * (maxMagnitude(origin) + std::abs(t) * maxMagnitude(direction) + objectSize_[i]);
 }
 
 ReferenceHit ReferenceRenderer::traceLinear(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
@@ -208,26 +219,15 @@ void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32
     direction = glm::normalize(forward + sx * right + sy * up);
 }
 
-glm::dvec3 ReferenceRenderer::secondaryOrigin(const glm::dvec3& p, const glm::dvec3& n) const {
-    double nearOrigin = scene_.scale / 32, floatScale = scene_.scale / 65536;
-    glm::dvec3 out;
-    for (int i = 0; i < 3; ++i) {
-        float pf = float(p[i]);
-        if (std::abs(pf) < nearOrigin) {
-            out[i] = p[i] + floatScale * n[i];
-        } else {  // move pf by int(256 n_i) units in the last place, away from zero when n_i > 0
-            int32_t bits = std::bit_cast<int32_t>(pf), units = int32_t(256.0f * float(n[i]));
-            float moved = std::bit_cast<float>(bits + (pf < 0 ? -units : units));
-            out[i] = double(moved) + (p[i] - double(pf));  // the same move, from the exact p
-        }
-    }
-    return out;
+glm::dvec3 ReferenceRenderer::secondaryOrigin(const glm::dvec3& p, double error, const glm::dvec3& n) const {
+    return p + error * n;
 }
 
 bool ReferenceRenderer::lightVisible(const glm::dvec3& from, const glm::dvec3& light) const {
     glm::dvec3 toLight = light - from;
     double d = glm::length(toLight);
-    return trace(from, toLight / d, 0.0, d * (1 - 1e-4)).t < 0;
+    double shortBy = kRounding * std::max(maxMagnitude(from), maxMagnitude(light));  // as the GPU's, in double
+    return trace(from, toLight / d, 0.0, d - shortBy).t < 0;
 }
 
 double referenceFresnel(int mode, double f0, double cosI, double n1, double n2) {
@@ -274,10 +274,10 @@ glm::dvec3 refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1,
 }  // namespace
 
 glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
-                                           const glm::dvec3& n, const glm::dvec3& v) const {
+                                           double error, const glm::dvec3& n, const glm::dvec3& v) const {
     glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
     if (settings.stage == ReferenceStage::Ambient) return color;
-    glm::dvec3 from = secondaryOrigin(p, n);
+    glm::dvec3 from = secondaryOrigin(p, error, n);
     for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
         glm::dvec3 l = glm::normalize(light.position - p);
         double ndotl = glm::dot(n, l);
@@ -301,14 +301,14 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     const Material& m = scene_.materials[scene_.objects[hit.object].material];
     glm::dvec3 p = origin + hit.t * direction;
     glm::dvec3 v = -direction;
-    if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, n, v);
+    if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, hit.error, n, v);
 
     // How the light divides at this surface (chapters 08-10).
     bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
     Split split = splitAt(settings, m, entering, glm::dot(n, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, v);
     if (depth >= settings.maxDepth) return color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
@@ -317,11 +317,11 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     };
     if (reflected > 0 && strongEnough(reflected)) {
         glm::dvec3 r = direction - 2 * glm::dot(direction, n) * n;
-        color += reflected * radiance(settings, secondaryOrigin(p, n), r, depth + 1, throughput * reflected);
+        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r, depth + 1, throughput * reflected);
     }
     if (refracted > 0 && strongEnough(refracted)) {
         glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
-        color += refracted * radiance(settings, secondaryOrigin(p, -n), t, depth + 1, throughput * refracted);
+        color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, depth + 1, throughput * refracted);
     }
     return color;
 }
@@ -347,10 +347,10 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     Split split = splitAt(settings, m, entering, glm::dot(n, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, v);
     if (refracted >= 1e-4) {
         glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
-        color += refracted * radiance(settings, secondaryOrigin(p, -n), t, 1, glm::dvec3(refracted));
+        color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, 1, glm::dvec3(refracted));
     }
     if (reflected < 1e-4) return color;
     glm::dvec3 mirror = direction - 2 * glm::dot(direction, n) * n;
@@ -361,7 +361,7 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     int side = std::max(1, int(std::lround(std::sqrt(double(settings.samples)))));
     std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x) ^ (settings.seed * 0xD1B54A32D192ED03ull));
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    glm::dvec3 from = secondaryOrigin(p, n), sum(0), sumSq(0);
+    glm::dvec3 from = secondaryOrigin(p, hit.error, n), sum(0), sumSq(0);
     for (int j = 0; j < side; ++j)
         for (int i = 0; i < side; ++i) {
             double u1 = (i + uniform(rng)) / side, u2 = (j + uniform(rng)) / side;

@@ -26,6 +26,7 @@ struct ReferenceHit {
     glm::dvec3 normal{0};   // world, unit, out of the shape
     uint32_t object = 0;
     bool frontFace = true;
+    double error = 0;       // how far origin + t * direction may lie from the surface (its rounding)
 };
 
 class ReferenceRenderer {
@@ -48,19 +49,21 @@ public:
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
                         int depth, const glm::dvec3& throughput) const;
-    glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
+    glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p, double error,
                             const glm::dvec3& n, const glm::dvec3& v) const;
     // Renders every pixel on all cores. For chapter 11 each pixel's alpha
     // holds the standard error of its estimate (the reference's own error).
     FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
-    // Where a secondary ray leaving p (normal n) starts: the same rule as the
-    // GPU's offsetRay (Wächter-Binder on the float value of p), evaluated here
-    // so that both decide visibility from the same point.
-    glm::dvec3 secondaryOrigin(const glm::dvec3& p, const glm::dvec3& n) const;
+    // Where a secondary ray leaving p (normal n) starts: moved along n by the
+    // hit's own error bound, as the GPU's offsetRay, but the bound of double
+    // precision (about 1e-15 of the numbers involved, where the GPU's is 1e-6):
+    // the reference stays close to exact geometry, so comparing against it
+    // shows where the GPU's offsets change the picture.
+    glm::dvec3 secondaryOrigin(const glm::dvec3& p, double error, const glm::dvec3& n) const;
     // True when nothing lies between `from` and the light (in double precision).
     bool lightVisible(const glm::dvec3& from, const glm::dvec3& light) const;
     // Camera rays ignore hits closer than this to the eye (the GPU's eyeTmin).
-    double eyeTmin() const { return scene_.scale / 65536.0; }
+    double eyeTmin() const { return scene_.eyeTmin; }
 
 private:
     // Tests object i; updates `best` when it is hit closer (or as close and listed earlier).
@@ -80,6 +83,7 @@ private:
 
     const Scene& scene_;
     std::vector<glm::dmat4> worldToObject_;
+    std::vector<double> objectSize_;  // |translation| + largest scale: the magnitude of its numbers
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
     std::vector<double> sky_;  // linear RGB
 };

@@ -102,7 +102,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     camera.skyBottom = v4(scene.sky.bottom);
     camera.ambient = v4(scene.ambient);
     camera.counts = {sky.width, sky.height, uint32_t(scene.lights.size()), uint32_t(scene.objects.size())};
-    camera.scale = {float(scene.scale), 0, 0, 0};
+    camera.eye = {float(scene.eyeTmin), 0, 0, 0};
     rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     std::vector<gpu::GpuObject> objects;

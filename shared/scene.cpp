@@ -182,18 +182,34 @@ glm::dmat4 readTransform(const Reader& r, const json& j, const std::string& key)
     return m;
 }
 
-// The scene's size when the file gives none: the largest distance of an
-// object's box from the origin. Secondary-ray offsets scale with it.
-double measuredScale(const Scene& s) {
-    double scale = 0;
-    for (const auto& o : s.objects) {
+// [region eye_tmin]
+// Rule 1 of docs/scene-format.md: camera rays ignore hits closer to the eye
+// than this. It is 0 unless the eye lies on a surface within that
+// surface's float rounding (an eye placed exactly on a sphere lands, once in
+// float, a hair inside or outside it); then a reach a little beyond that
+// rounding, so that the eye sees what a ray leaving the surface would. Each
+// surface's rounding grows with its own size and distance, so the value
+// depends on the surfaces at the eye alone, not on the rest of the scene.
+double eyeTmin(const Scene& s) {
+    constexpr double kRounding = 8.0 / 16777216.0;   // 8 units of float's relative rounding, 2^-24
+    constexpr double kReach = 1.0 / 16384.0;          // 2^-14 of the surface's size
+    double tMin = 0;
+    for (const Object& o : s.objects) {
+        if (o.hidden) continue;
         const glm::dmat4& m = o.transform;
-        double extent = glm::length(glm::dvec3(m[3])) + glm::length(glm::dvec3(m[0])) + glm::length(glm::dvec3(m[1])) +
-                        glm::length(glm::dvec3(m[2]));
-        scale = std::max(scale, extent);
+        double scale = std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                                 glm::length(glm::dvec3(m[2]))});
+        double size = glm::length(glm::dvec3(m[3]) - s.camera.position) + scale;
+        glm::dvec3 q = glm::dvec3(glm::inverse(m) * glm::dvec4(s.camera.position, 1.0));  // the eye, in object space
+        double rounding = kRounding * size / scale;                                       // in object units
+        bool onSurface = o.type == ShapeType::Sphere
+                             ? std::abs(glm::length(q) - 1.0) <= rounding
+                             : std::abs(q.y) <= rounding && std::abs(q.x) <= 1 + rounding && std::abs(q.z) <= 1 + rounding;
+        if (onSurface) tMin = std::max(tMin, kReach * size);
     }
-    return scale;
+    return tMin;
 }
+// [end]
 
 // The unit sphere scaled to `radius`, then moved to `center`.
 glm::dmat4 sphereTransform(const glm::dvec3& center, double radius) {
@@ -417,12 +433,11 @@ Scene loadScene(const std::string& path) {
     }
     if (copies > 3) std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n", path.c_str(), copies - 3);
     // [end]
-    if (j.contains("scale")) {
-        s.scale = r.number(j["scale"], "scale", 1e-12, kHuge);
-        s.scaleGiven = true;
-    } else {
-        s.scale = measuredScale(s);
-    }
+    // "scale" set the offsets of secondary rays until they came from each
+    // hit's own error bound (chapter 06); older files still load, and it is
+    // checked but changes nothing.
+    if (j.contains("scale")) r.number(j["scale"], "scale", 1e-12, kHuge);
+    s.eyeTmin = eyeTmin(s);
     return s;
 }
 
@@ -437,7 +452,6 @@ Scene toCameraSpace(Scene s) {
     s.camera.lookAt -= eye;
     s.camera.position = glm::dvec3(0);
     s.origin -= eye;
-    if (!s.scaleGiven) s.scale = measuredScale(s);  // the size as seen from the camera
     return s;
 }
 // [end]

@@ -66,8 +66,9 @@ struct Scene {
     std::vector<PointLight> lights;
     std::vector<Material> materials;
     std::vector<Object> objects;
-    double scale = 1.0;  // the scene's size (given, or from the objects): secondary-ray offsets scale with it
-    bool scaleGiven = false;  // "scale" was in the file (else it is measured from the objects)
+    // Camera rays ignore hits closer to the eye than this: 0 unless the eye
+    // lies on a surface (eyeTmin in scene.cpp; docs/scene-format.md's rule 1).
+    double eyeTmin = 0;
     glm::dvec3 origin{0};     // where the file's origin lies in this scene's space (toCameraSpace): file = p - origin
 };
 

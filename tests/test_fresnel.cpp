@@ -96,10 +96,10 @@ TEST(Fresnel, NoTotalInternalReflectionForLightEnteringASphere) {
         for (float h : {0.0f, 0.5f, 0.9f, 0.99f, 0.999f}) {
             glm::vec3 origin(h, 0, 5), direction(0, 0, -1);
             glm::vec2 t;
-            ASSERT_TRUE(shader::intersectUnitSphere(origin, direction, t));
+            ASSERT_TRUE(shader::intersectSphere(origin, direction, glm::vec3(0.0f), 1.0f, t));
             glm::vec3 p = origin + t.x * direction, n = glm::normalize(p);
             glm::vec3 inside = glm::refract(direction, n, float(1 / ior));
-            ASSERT_TRUE(shader::intersectUnitSphere(p, inside, t));
+            ASSERT_TRUE(shader::intersectSphere(p, inside, glm::vec3(0.0f), 1.0f, t));
             glm::vec3 q = p + t.y * inside, m = -glm::normalize(q);
             EXPECT_LT(shader::fresnelExact(-glm::dot(m, inside), float(ior), 1.0f), 1.0f) << "ior " << ior << ", h " << h;
             EXPECT_NE(glm::refract(inside, m, float(ior)), glm::vec3(0)) << "ior " << ior << ", h " << h;

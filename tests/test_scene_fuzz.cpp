@@ -110,7 +110,7 @@ std::string mutate(const std::string& text, std::mt19937& rng, int kind) {
 
 bool finite(const rg::Scene& s) {
     auto ok3 = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-    if (!ok3(s.camera.position) || !ok3(s.camera.lookAt) || !ok3(s.camera.up) || !std::isfinite(s.scale)) return false;
+    if (!ok3(s.camera.position) || !ok3(s.camera.lookAt) || !ok3(s.camera.up) || !std::isfinite(s.eyeTmin)) return false;
     for (const auto& l : s.lights)
         if (!ok3(l.position) || !ok3(l.intensity)) return false;
     for (const auto& o : s.objects)

@@ -26,7 +26,7 @@ Roots exact(const glm::dvec3& o, const glm::dvec3& d) {
 
 Roots gpu(const glm::vec3& o, const glm::vec3& d) {
     glm::vec2 t;
-    bool hit = shader::intersectUnitSphere(o, d, t);
+    bool hit = shader::intersectSphere(o, d, glm::vec3(0.0f), 1.0f, t);
     return {hit, t.x, t.y};
 }
 
@@ -81,6 +81,41 @@ TEST(SphereIntersection, OriginInside) {
     EXPECT_LT(r.t0, 0.0);
     EXPECT_GT(r.t1, 0.0);
     expectClose({0.1f, 0.2f, 0.3f}, {0, 0, 1}, 1e-6, 1e-7);
+}
+
+// A floor as the top of a sphere of radius R (chapter 06), the eye h above it:
+// the hit point o + t d must lie on the float sphere as exactly as on a
+// plane, and a ray leaving it upward from just above must not hit it again.
+// Both directions point below every horizon here (5.7 degrees and more).
+TEST(SphereIntersection, BigSphereSeenFromNearItsSurface) {
+    for (float radius : {1e3f, 1e4f, 1e5f, 1e6f})
+        for (float h : {1.5f, 0.01f})
+            for (glm::vec3 dir : {glm::vec3(0.1f, -0.5f, -0.8f), glm::vec3(0.02f, -0.1f, -1.0f)}) {
+                glm::vec3 centre(0, -radius, 0), o(0.3f, h, 2.0f), d = glm::normalize(dir);
+                glm::vec2 t;
+                ASSERT_TRUE(shader::intersectSphere(o, d, centre, radius, t)) << radius;
+                glm::dvec3 p = glm::dvec3(o) + double(t.x) * glm::dvec3(d);
+                double fromSurface = glm::length(p - glm::dvec3(centre)) - radius;
+                EXPECT_LE(std::abs(fromSurface), 1e-6 * (glm::length(glm::dvec3(o)) + t.x))
+                    << "R " << radius << ", h " << h << ": " << fromSurface;
+                glm::vec3 above = glm::vec3(p) + glm::vec3(0, 1e-5f * (1 + t.x), 0);
+                if (shader::intersectSphere(above, glm::normalize(glm::vec3(-0.3f, 1, 0.2f)), centre, radius, t)) {
+                    EXPECT_LT(t.y, 0.0f) << "R " << radius << ": the ray leaving the floor hits it again";
+                }
+            }
+}
+
+// A sky dome of radius 1e20 seen from inside, in world space and as an
+// instance of the unit sphere (whose object-space direction is 1e-20 long):
+// r^2 and |d|^2 are past float's range, the roots are not.
+TEST(SphereIntersection, HugeDomeFromInside) {
+    glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f));
+    glm::vec2 t;
+    ASSERT_TRUE(shader::intersectSphere(glm::vec3(1, 2, 3), d, glm::vec3(0), 1e20f, t));
+    EXPECT_NEAR(t.y / 1e20, 1.0, 1e-6);
+    EXPECT_NEAR(t.x / 1e20, -1.0, 1e-6);
+    ASSERT_TRUE(shader::intersectSphere(glm::vec3(1e-20f, 2e-20f, 3e-20f), d * 1e-20f, glm::vec3(0), 1.0f, t));
+    EXPECT_NEAR(t.y / 1e20, 1.0, 1e-6);  // t in the direction's own units
 }
 
 TEST(SphereIntersection, MissesWhatItShould) {

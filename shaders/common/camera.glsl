@@ -2,12 +2,13 @@
 #ifndef CAMERA_GLSL
 #define CAMERA_GLSL
 // [region eye_tmin]
-// Camera rays ignore hits closer to the eye than this, so an eye placed
-// exactly on a surface sees what a ray leaving that surface would: the
-// outside above its tangent plane, the inside below. It is offsetRay's
-// distance at the origin, where the eye is in camera space (the rule is in
-// docs/scene-format.md; the CPU reference follows it).
-float eyeTmin() { return camera.scale.x / 65536.0; }
+// Camera rays ignore hits closer to the eye than this: 0, unless the eye
+// lies exactly on a surface; then a little more than that surface's
+// rounding, so that the eye sees what a ray leaving that surface would: the
+// outside above its tangent plane, the inside below (the rule and its value
+// are in docs/scene-format.md and Scene::eyeTmin; the CPU reference follows
+// it).
+float eyeTmin() { return camera.eye.x; }
 // [end]
 
 // [region camera_ray]

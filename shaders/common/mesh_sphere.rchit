@@ -7,6 +7,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "rt_bindings.glsl"
 #include "payload.glsl"
+#include "hit_error.glsl"
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 layout(binding = RT_BINDING_MESH_VERTICES, std430) readonly buffer MeshVertices { float meshVertices[]; };
@@ -27,7 +28,7 @@ void main() {
     payload.normal = normalize(smoothNormal * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    payload.object = gl_InstanceCustomIndexEXT;
+    payload.error = hitError(abs(local), gl_ObjectToWorldEXT, payload.normal);  // interpolated from the vertices
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(faceNormal, gl_ObjectRayDirectionEXT) < 0.0 ? 1u : 0u;
     payload.radius = 0.0;  // no bound: interpolated normals can refract a ray out of the mesh

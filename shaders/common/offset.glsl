@@ -1,33 +1,37 @@
 // Where secondary rays start (chapters 06 on). A hit point computed in float
 // lies slightly above or below the true surface; a ray started there can hit
-// the surface it leaves ("shadow acne"). A fixed epsilon works at one scene
-// scale only. Wächter and Binder ("A Fast and Robust Method for Avoiding
-// Self-Intersection", Ray Tracing Gems, ch. 6) move the point along the
-// normal by a fixed number of units in the last place of each coordinate, so
-// the offset grows with the coordinates' own rounding error. Their two
-// absolute constants assume a scene of size 1; here they are multiplied by
-// the scene's scale (camera.scale.x), so a scene of size 1e-3 works too.
+// the surface it leaves ("shadow acne"). How far off it can be depends on
+// that hit alone: on the size of the numbers that made it, not on the scene
+// around it. The closest-hit shader bounds the point's error from those
+// numbers (hit_error.glsl); here the ray's origin moves that far along the
+// geometric normal, then one float further in each coordinate so that the
+// rounding of the move cannot undo it (PBRT-v4, section 6.8.6; Wächter and
+// Binder, Ray Tracing Gems ch. 6, move by units in the last place too).
 #ifndef OFFSET_GLSL
 #define OFFSET_GLSL
 // [region offset_ray]
-vec3 offsetRay(vec3 p, vec3 n) {
-    const float intScale = 256.0;                      // ULPs to move away from the surface
-    float nearOrigin = camera.scale.x / 32.0;          // below this, ULPs are too small:
-    float floatScale = camera.scale.x / 65536.0;       //   move by a fixed fraction of the scene
-    ivec3 ofI = ivec3(intScale * n);
-    vec3 pI = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -ofI.x : ofI.x)),
-                   intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -ofI.y : ofI.y)),
-                   intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -ofI.z : ofI.z)));
-    return vec3(abs(p.x) < nearOrigin ? p.x + floatScale * n.x : pI.x,
-                abs(p.y) < nearOrigin ? p.y + floatScale * n.y : pI.y,
-                abs(p.z) < nearOrigin ? p.z + floatScale * n.z : pI.z);
+// The float after x toward the sign of direction (x itself for 0).
+float nextFloatAway(float x, float direction) {
+    if (direction == 0.0) return x;
+    if (x == 0.0) return direction > 0.0 ? 1.4e-45 : -1.4e-45;
+    int bits = floatBitsToInt(x);
+    return intBitsToFloat((x > 0.0) == (direction > 0.0) ? bits + 1 : bits - 1);
+}
+
+// p: the hit point; error: how far it may be from the surface (along n);
+// n: the unit geometric normal on the side the new ray leaves from.
+vec3 offsetRay(vec3 p, float error, vec3 n) {
+    vec3 moved = p + error * n;
+    return vec3(nextFloatAway(moved.x, n.x),
+                nextFloatAway(moved.y, n.y),
+                nextFloatAway(moved.z, n.z));
 }
 // [end]
 
 // The start of a secondary ray leaving the surface on the side of `n`:
-// chapter 06's --fixed-epsilon experiment replaces the robust offset by
+// chapter 06's --fixed-epsilon experiment replaces the bounded offset by
 // p + epsilon * n.
-vec3 secondaryOrigin(vec3 p, vec3 n) {
-    return push.epsilon > 0.0 ? p + push.epsilon * n : offsetRay(p, n);
+vec3 secondaryOrigin(vec3 p, float error, vec3 n) {
+    return push.epsilon > 0.0 ? p + push.epsilon * n : offsetRay(p, error, n);
 }
 #endif

@@ -8,10 +8,10 @@ struct HitPayload {
     float t;         // hit distance along the (unit) ray direction; < 0 on a miss
     vec3 normal;     // world-space unit geometric normal, pointing out of the shape
     uint material;
-    vec3 position;   // world-space hit point, re-projected onto the surface
-    uint object;
+    vec3 position;   // world-space hit point: the ray's point at t
     uint frontFace;  // 1: the ray hit the outside (front) of the surface
     float radius;    // world-space radius of the sphere hit, 0 for other shapes (chapter 10)
+    float error;     // how far `position` may be from the surface (hit_error.glsl, chapter 06)
 };
 // [end]
 #endif

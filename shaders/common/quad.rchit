@@ -4,6 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "rt_bindings.glsl"
 #include "payload.glsl"
+#include "hit_error.glsl"
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 
@@ -14,7 +15,8 @@ void main() {
     vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
     local.y = 0.0;  // exactly on the unit quad's plane
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    payload.object = gl_InstanceCustomIndexEXT;
+    payload.error = hitError(rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT),
+                             gl_ObjectToWorldEXT, payload.normal);
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
     payload.radius = 0.0;  // a quad has no inside

@@ -73,22 +73,23 @@ void growBranch() {
     GpuMaterial m = materials[payload.material];
     vec3 n = facingNormal(payload.normal, b.direction);
     vec3 p = payload.position;
+    float e = payload.error;
     float radius = payload.radius;
     bool entering = payload.frontFace == 1u;
     Split s = splitAt(m, entering, n, b.direction);
-    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, n, -b.direction, tree.rays);
+    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, e, n, -b.direction, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
-        vec3 t = refract(b.direction, n, s.eta), o = secondaryOrigin(p, -n);
+        vec3 t = refract(b.direction, n, s.eta), o = secondaryOrigin(p, e, -n);
         float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
         tree.stack[tree.top++] = Branch(o, b.depth + 1u, normalize(t), tMax, tr, 0.0);
     }
     // [end]
     if (maxComponent(rf) >= MIN_THROUGHPUT) {
-        vec3 o = secondaryOrigin(p, n);
+        vec3 o = secondaryOrigin(p, e, n);
         float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
         tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflect(b.direction, n), tMax, rf, 0.0);
     }

@@ -5,6 +5,7 @@
 #ifndef SHADING_GLSL
 #define SHADING_GLSL
 #include "offset.glsl"
+#include "hit_error.glsl"
 
 layout(location = 1) rayPayloadEXT uint shadowPayload;
 
@@ -14,16 +15,30 @@ vec3 ambientTerm(GpuMaterial m) {
 }
 // [end]
 
+// Length and direction of a vector of any size: |v|^2 overflows float past
+// 1.8e19 (a light seen from a sky dome of radius 1e20), so v is first
+// divided by its largest component.
+float safeLength(vec3 v) {
+    float m = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    return m == 0.0 ? 0.0 : m * length(v / m);
+}
+vec3 safeNormalize(vec3 v) { return normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z)))); }
+
 // [region visible]
 // True when nothing lies between `origin` (already offset from the surface)
 // and the light. The ray is aimed from where it starts: aimed from the
 // surface point instead, it would end beside the light, by the offset.
-// It needs no closest hit, only "anything at all": it stops at the first
-// hit and runs no closest-hit shader; only the shadow miss shader says "lit".
+// It stops short of the light by the rounding of the two points (the same
+// kind of bound as the offset, not a share of the distance), so a light
+// inside a small closed object stays inside it. It needs no closest hit,
+// only "anything at all": it stops at the first hit and runs no
+// closest-hit shader; only the shadow miss shader says "lit".
 bool lightVisible(vec3 origin, vec3 light) {
     vec3 toLight = light - origin;
-    float distanceToLight = length(toLight);
-    toLight /= distanceToLight;
+    float distanceToLight = safeLength(toLight);
+    toLight = safeNormalize(toLight);
+    vec3 magnitude = max(abs(origin), abs(light));
+    float shortBy = 64.0 * kUnitRoundoff * max(magnitude.x, max(magnitude.y, magnitude.z));
     shadowPayload = 1u;  // assume blocked until the miss shader says otherwise
     traceRayEXT(tlas,
                 gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
@@ -32,20 +47,36 @@ bool lightVisible(vec3 origin, vec3 light) {
                 0,                             // SBT stride: one geometry per BLAS
                 MISS_SHADOW,                   // the shadow miss shader
                 origin, 0.0,                   // origin already offset from the surface
-                toLight, distanceToLight * (1.0 - 1e-4),  // stop just short of the light
+                toLight, distanceToLight - shortBy,  // stop just short of the light
                 1);                            // payload location 1: shadowPayload
     return shadowPayload == 0u;
+}
+// [end]
+
+// [region specular_power]
+// max(0, n.h)^shininess for any shininess: near the peak n.h rounds to 1
+// within 6e-8, which a power of 1e6 turns into 6 % (e^(-1e6 * 6e-8)). So
+// the power is taken as exp(shininess * log(cos)) with 1 - cos from the
+// vectors' difference, |n - h|^2 / 2, exact where cos is near 1.
+float specularPower(vec3 n, vec3 h, float shininess) {
+    float cosine = dot(n, h);
+    if (cosine <= 0.0) return 0.0;
+    vec3 w = n - h;
+    float x = 0.5 * dot(w, w);                                     // 1 - cos
+    float logCosine = x < 1e-3 ? -x * (1.0 + x * (0.5 + x / 3.0))  // log(1 - x), series
+                               : log(cosine);
+    return exp(shininess * logCosine);
 }
 // [end]
 
 // [region diffuse]
 // k_d * sum over lights of I_i * max(0, l . n), for the lights this point sees.
 // n faces the side the ray came from; `rays` counts the shadow rays traced.
-vec3 diffuseTerm(GpuMaterial m, vec3 p, vec3 n, inout uint rays) {
+vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
     vec3 sum = vec3(0.0);
-    vec3 origin = secondaryOrigin(p, n);
+    vec3 origin = secondaryOrigin(p, error, n);
     for (uint i = 0u; i < camera.counts.z; ++i) {
-        vec3 l = normalize(lights[i].position.xyz - p);
+        vec3 l = safeNormalize(lights[i].position.xyz - p);
         float ndotl = dot(n, l);
         if (ndotl <= 0.0) continue;  // the light is behind the surface: no ray needed
         ++rays;
@@ -58,17 +89,17 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, vec3 n, inout uint rays) {
 // [region diffuse_specular]
 // Diffuse and Blinn-Phong specular together, one shadow ray per light:
 // k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
-vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays) {
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
     vec3 sum = vec3(0.0);
-    vec3 origin = secondaryOrigin(p, n);
+    vec3 origin = secondaryOrigin(p, error, n);
     for (uint i = 0u; i < camera.counts.z; ++i) {
-        vec3 l = normalize(lights[i].position.xyz - p);
+        vec3 l = safeNormalize(lights[i].position.xyz - p);
         float ndotl = dot(n, l);
         if (ndotl <= 0.0) continue;
         ++rays;
         if (!lightVisible(origin, lights[i].position.xyz)) continue;
         vec3 h = normalize(l + v);
-        float specular = pow(max(0.0, dot(n, h)), m.params.x);
+        float specular = specularPower(n, h, m.params.x);
         sum += lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
     }
     return sum;
@@ -76,7 +107,7 @@ vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays)
 // [end]
 
 // Chapter 07's whole local model: ambient + diffuse + specular.
-vec3 localShading(GpuMaterial m, vec3 p, vec3 n, vec3 v, inout uint rays) {
-    return ambientTerm(m) + diffuseSpecularTerm(m, p, n, v, rays);
+vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
+    return ambientTerm(m) + diffuseSpecularTerm(m, p, error, n, v, rays);
 }
 #endif

@@ -4,6 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "rt_bindings.glsl"
 #include "payload.glsl"
+#include "hit_error.glsl"
 
 // [region closest_hit]
 layout(location = 0) rayPayloadInEXT HitPayload payload;
@@ -17,10 +18,13 @@ void main() {
     // Normals transform with the inverse transpose: n * M^-1 = (M^-T) n.
     payload.normal = normalize(objectNormal * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
-    // The hit point on the unit sphere (normalizing projects it onto the
-    // surface), then to world space: more exact than origin + t * direction.
-    payload.position = gl_ObjectToWorldEXT * vec4(s.xyz + s.w * normalize(objectNormal), 1.0);
-    payload.object = index;
+    // The hit point from the ray (not as centre + radius * normal, whose
+    // error grows with the centre's distance: a floor of radius 1e5).
+    vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
+    payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
+    vec3 magnitude = rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT);
+    if (gl_HitKindEXT == 1u) magnitude += abs(gl_ObjectRayOriginEXT - s.xyz) + s.w;  // the far root: from inside
+    payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.material = objects[index].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
     payload.radius = objects[index].radius;
