@@ -4,27 +4,21 @@
 // that hit alone: on the size of the numbers that made it, not on the scene
 // around it. The closest-hit shader bounds the point's error from those
 // numbers (hit_error.glsl); here the ray's origin moves that far along the
-// geometric normal, then one float further in each coordinate so that the
-// rounding of the move cannot undo it (PBRT-v4, section 6.8.6; Wächter and
-// Binder, Ray Tracing Gems ch. 6, move by units in the last place too).
+// geometric normal, then at least one float further in each coordinate so
+// that the rounding of the move cannot undo it (PBRT-v4, section 6.8.6;
+// Wächter and Binder, Ray Tracing Gems ch. 6, move by units in the last
+// place too).
 #ifndef OFFSET_GLSL
 #define OFFSET_GLSL
 // [region offset_ray]
-// The float after x toward the sign of direction (x itself for 0).
-float nextFloatAway(float x, float direction) {
-    if (direction == 0.0) return x;
-    if (x == 0.0) return direction > 0.0 ? 1.4e-45 : -1.4e-45;
-    int bits = floatBitsToInt(x);
-    return intBitsToFloat((x > 0.0) == (direction > 0.0) ? bits + 1 : bits - 1);
-}
-
 // p: the hit point; error: how far it may be from the surface (along n);
-// n: the unit geometric normal on the side the new ray leaves from.
+// n: the unit geometric normal on the side the new ray leaves from. The
+// last step adds at least one unit in the last place of each coordinate
+// (2^-23 of its size, or the smallest normal float near 0) in n's
+// direction, so that the rounding of p + error * n cannot undo the move.
 vec3 offsetRay(vec3 p, float error, vec3 n) {
     vec3 moved = p + error * n;
-    return vec3(nextFloatAway(moved.x, n.x),
-                nextFloatAway(moved.y, n.y),
-                nextFloatAway(moved.z, n.z));
+    return moved + sign(n) * max(abs(moved) * 1.1920929e-7, vec3(1.1754944e-38));
 }
 // [end]
 

@@ -16,13 +16,18 @@ vec3 ambientTerm(GpuMaterial m) {
 // [end]
 
 // Length and direction of a vector of any size: |v|^2 overflows float past
-// 1.8e19 (a light seen from a sky dome of radius 1e20), so v is first
+// 1.8e19 (a light seen from a sky dome of radius 1e20); then v is first
 // divided by its largest component.
 float safeLength(vec3 v) {
+    float vv = dot(v, v);
+    if (vv < 1e37) return sqrt(vv);
     float m = max(abs(v.x), max(abs(v.y), abs(v.z)));
-    return m == 0.0 ? 0.0 : m * length(v / m);
+    return m * length(v / m);
 }
-vec3 safeNormalize(vec3 v) { return normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z)))); }
+vec3 safeNormalize(vec3 v) {
+    float vv = dot(v, v);
+    return vv < 1e37 ? v * inversesqrt(vv) : normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z))));
+}
 
 // [region visible]
 // True when nothing lies between `origin` (already offset from the surface)
@@ -56,11 +61,13 @@ bool lightVisible(vec3 origin, vec3 light) {
 // [region specular_power]
 // max(0, n.h)^shininess for any shininess: near the peak n.h rounds to 1
 // within 6e-8, which a power of 1e6 turns into 6 % (e^(-1e6 * 6e-8)). So
-// the power is taken as exp(shininess * log(cos)) with 1 - cos from the
-// vectors' difference, |n - h|^2 / 2, exact where cos is near 1.
+// from a shininess of 1e4 on (where that error passes 6e-4) the power is
+// taken as exp(shininess * log(cos)) with 1 - cos from the vectors'
+// difference, |n - h|^2 / 2, exact where cos is near 1.
 float specularPower(vec3 n, vec3 h, float shininess) {
     float cosine = dot(n, h);
     if (cosine <= 0.0) return 0.0;
+    if (shininess < 1e4) return pow(cosine, shininess);
     vec3 w = n - h;
     float x = 0.5 * dot(w, w);                                     // 1 - cos
     float logCosine = x < 1e-3 ? -x * (1.0 + x * (0.5 + x / 3.0))  // log(1 - x), series
