@@ -46,9 +46,7 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
     for (const auto& o : scene.objects) {
         worldToObject_.push_back(glm::inverse(o.transform));
         const glm::dmat4& m = o.transform;
-        objectSize_.push_back(maxMagnitude(glm::dvec3(m[3])) +
-                              std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
-                                        glm::length(glm::dvec3(m[2]))}));
+        objectSize_.push_back(maxMagnitude(glm::dvec3(m[3])) + largestStretch(m));
     }
     buildBvh();
     SkyTexels sky = loadSky(scene);

@@ -53,15 +53,11 @@ Buffer createRayCounts(const Gpu& gpu, DeletionQueue& deletion, uint32_t width, 
                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 }
 // A sphere's radius in world space, rounded up: a ray starting inside goes
-// at most twice this far before it leaves (chapter 10). The format's
-// transforms are rotations times scales, whose columns are orthogonal, so the
-// longest column is the largest stretch (an ellipsoid's longest semi-axis).
-// A quad has no inside: 0.
+// at most twice this far before it leaves (chapter 10); for an ellipsoid its
+// longest semi-axis. A quad has no inside: 0.
 float worldRadius(const Object& o) {
     if (o.type != ShapeType::Sphere) return 0.0f;
-    glm::dmat3 m(o.transform);
-    double longest = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-    return std::nextafter(float(longest), INFINITY);
+    return std::nextafter(float(largestStretch(o.transform)), INFINITY);
 }
 }  // namespace
 

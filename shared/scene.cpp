@@ -20,6 +20,10 @@
 
 namespace rg {
 
+double largestStretch(const glm::dmat4& m) {
+    return std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])), glm::length(glm::dvec3(m[2]))});
+}
+
 namespace {
 
 using nlohmann::json;
@@ -197,8 +201,7 @@ double eyeTmin(const Scene& s) {
     for (const Object& o : s.objects) {
         if (o.hidden) continue;
         const glm::dmat4& m = o.transform;
-        double scale = std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
-                                 glm::length(glm::dvec3(m[2]))});
+        double scale = largestStretch(m);
         double size = glm::length(glm::dvec3(m[3]) - s.camera.position) + scale;
         glm::dvec3 q = glm::dvec3(glm::inverse(m) * glm::dvec4(s.camera.position, 1.0));  // the eye, in object space
         double rounding = kRounding * size / scale;                                       // in object units

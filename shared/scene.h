@@ -72,6 +72,11 @@ struct Scene {
     glm::dvec3 origin{0};     // where the file's origin lies in this scene's space (toCameraSpace): file = p - origin
 };
 
+// The longest column of a transform's 3x3 part: the largest stretch it
+// applies (the format's transforms are rotations times scales, whose columns
+// are orthogonal), an ellipsoid's longest semi-axis.
+double largestStretch(const glm::dmat4& transform);
+
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
 // the file and the key for a missing file, bad JSON, an unknown key, a
 // missing value or one out of range.
