@@ -4,21 +4,19 @@
 // that hit alone: on the size of the numbers that made it, not on the scene
 // around it. The closest-hit shader bounds the point's error from those
 // numbers (hit_error.glsl); here the ray's origin moves that far along the
-// geometric normal, then at least one float further in each coordinate so
-// that the rounding of the move cannot undo it (PBRT-v4, section 6.8.6;
-// Wächter and Binder, Ray Tracing Gems ch. 6, move by units in the last
-// place too).
+// geometric normal (PBRT-v4, section 6.8.6; Wächter and Binder, Ray Tracing
+// Gems ch. 6, move by units in the last place of the coordinates instead).
 #ifndef OFFSET_GLSL
 #define OFFSET_GLSL
 // [region offset_ray]
 // p: the hit point; error: how far it may be from the surface (along n);
 // n: the unit geometric normal on the side the new ray leaves from. The
-// last step adds at least one unit in the last place of each coordinate
-// (2^-23 of its size, or the smallest normal float near 0) in n's
-// direction, so that the rounding of p + error * n cannot undo the move.
+// move itself rounds too, by at most one unit in the last place of each
+// coordinate: that costs at most 1/16 of `error` along n (the bound counts
+// 16 units of the same numbers), so the new origin stays beyond the surface.
+// The floor keeps a hit at the very origin of a tiny scene off it as well.
 vec3 offsetRay(vec3 p, float error, vec3 n) {
-    vec3 moved = p + error * n;
-    return moved + sign(n) * max(abs(moved) * 1.1920929e-7, vec3(1.1754944e-38));
+    return p + max(error, 1e-30) * n;
 }
 // [end]
 

@@ -44,81 +44,60 @@ vec2 accumulate(vec2 sum, vec2 p) {
     return vec2(s.x, sum.y + s.y + p.y);
 }
 
-// Near the surface (|f| close to r), b = -(f . d), c = |f|^2 - r^2 and the
-// discriminant b^2 - c all lose their digits to cancellation. Here they come
-// from the exact difference f = o - centre (fHi + fLo), exact products and
-// exact sums, to a few units in the last place of each result: a ray that
-// starts just off a big sphere, or grazes it, finds the right root (Ray
-// Tracing Gems ch. 7 removes the cancellation in the discriminant for rays
-// from far away; this removes it for rays from close by). d: unit length.
-vec3 nearSurfaceTerms(vec3 o, vec3 centre, float r, vec3 d) {
+// |o - centre|^2 - r^2 to a few units in the last place even where the
+// two terms are huge and nearly equal (the origin near a big sphere): the
+// difference o - centre as an exact sum of two floats, each square and r^2
+// as exact products, added without losing their low parts.
+float exactSquaredDistanceMinusRadius(vec3 o, vec3 centre, float r) {
     vec2 x = twoSum(o.x, -centre.x), y = twoSum(o.y, -centre.y), z = twoSum(o.z, -centre.z);
-    vec2 c = twoProduct(x.x, x.x);
+    vec2 c = twoProduct(-r, r);
+    c = accumulate(c, twoProduct(x.x, x.x));
     c = accumulate(c, twoProduct(y.x, y.x));
     c = accumulate(c, twoProduct(z.x, z.x));
-    c = accumulate(c, twoProduct(-r, r));
     c.y += 2.0f * (x.x * x.y + y.x * y.y + z.x * z.y);
-    vec2 b = twoProduct(-x.x, d.x);
-    b = accumulate(b, twoProduct(-y.x, d.y));
-    b = accumulate(b, twoProduct(-z.x, d.z));
-    b.y -= x.y * d.x + y.y * d.y + z.y * d.z;
-    vec2 discriminant = twoProduct(b.x, b.x);
-    discriminant = accumulate(discriminant, vec2(-c.x, -c.y));
-    discriminant.y += 2.0f * b.x * b.y;
-    return vec3(b.x + b.y, c.x + c.y, discriminant.x + discriminant.y);
+    return c.x + c.y;
 }
+
+float maxAbs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
 
 // [region sphere_roots]
 // Roots t.x <= t.y of |o + t d - centre| = r along any direction d (not
 // unit: object space gives it scaled), in d's own units; false when the
-// ray's line misses. Haines et al., Ray Tracing Gems ch. 7: the
-// discriminant from the centre's distance to the line, the nearer root as
-// c / q. Where the sizes would overflow or underflow when squared,
-// everything is first scaled by a power of two (exact) so that the largest
-// of |f| and r is about 1: a sky dome of radius 1e20 squares to 1e40, past
-// float's range, and its object-space direction (1e-20) to an underflow. When the origin is near the surface (c much smaller than
-// |f|^2: a ray leaving this sphere, an eye near a big one), the terms are
-// computed nearly exactly.
+// ray's line misses. With f = o - centre, b = -(f . d), c = |f|^2 - r^2 the
+// roots are (b +- sqrt(b^2 - |d|^2 c)) / |d|^2. Two places lose digits:
+// - far from a small sphere, b^2 and |d|^2 c are huge and nearly equal:
+//   Haines et al., Ray Tracing Gems ch. 7, take the discriminant from the
+//   centre's distance to the line instead, and the nearer root as c / q;
+// - near the surface of a big one, c itself is the difference of two huge
+//   and nearly equal numbers: there it is computed exactly, unless the ray
+//   surely leaves (a ray from this sphere's own surface, whose offset puts
+//   it well beyond c's rounding: outside and moving away, no root ahead;
+//   inside and moving in, the root ahead is q / |d|^2, exact anyway).
+// Sizes whose squares would over- or underflow (a sky dome of radius 1e20)
+// are first scaled by powers of two, which is exact.
 bool intersectSphere(vec3 o, vec3 d, vec3 centre, float r, RG_OUT(vec2) t) {
-    float dd = dot(d, d);
-    float perUnit;                                // t in d's units per unit length
-    vec3 dn;
-    if (dd > 1e-30f && dd < 1e30f) {              // the usual case: |d|^2 is a normal float
-        perUnit = inversesqrt(dd);
-        dn = d * perUnit;
-    } else {                                      // scaled first, or |d|^2 under- or overflows
-        float m = max(abs(d.x), max(abs(d.y), abs(d.z)));
-        dn = normalize(d / m);
-        perUnit = 1.0f / (m * length(d / m));
-    }
     vec3 f = o - centre;
-    float size = max(r, max(abs(f.x), max(abs(f.y), abs(f.z))));
-    float k = 1.0f;                               // squares of up to 1e30 fit a float
-    if (size > 1e15f || size < 1e-15f) {
-        int e;
-        frexp(size, e);
-        k = ldexp(1.0f, -e);                      // 2^-e: exact scaling
+    float a = dot(d, d), ff = dot(f, f), rr = r * r, m = max(ff, rr);
+    float unit = 1.0f;                            // t in d's units per t found below
+    if (!(a > 1e-18f && a < 1e18f && m > 1e-18f && m < 1e18f)) {
+        int e, ed;
+        frexp(max(r, maxAbs(f)), e);
+        frexp(maxAbs(d), ed);
+        float k = ldexp(1.0f, -e), kd = ldexp(1.0f, -ed);
+        o *= k; centre *= k; r *= k; f *= k; d *= kd;
+        a = dot(d, d); ff = dot(f, f); rr = r * r;
+        unit = kd / k;
     }
-    vec3 fk = f * k;
-    float rk = r * k;
-    float ff = dot(fk, fk);
-    float b = -dot(fk, dn), c = ff - rk * rk, discriminant;
-    // Near the surface c loses its digits, and the root c / q with them,
-    // unless the ray leaves for sure: it starts outside beyond c's own
-    // rounding and moves away (no root ahead: a shadow ray from this
-    // sphere), or starts inside and moves in (the root ahead is q, exact).
-    float rounding = 4.0f * 5.9604645e-8f * ff;
+    float b = -dot(f, d), c = ff - rr, discriminant;
+    float rounding = 4.0f * 5.9604645e-8f * ff;   // c's own rounding
     bool near = abs(c) < 0.125f * ff;
     if (near && c > rounding && b <= 0.0f) return false;
     if (!near || (c < -rounding && b > 0.0f)) {   // Haines's form
-        vec3 l = fk + b * dn;                     // centre -> closest point of the line
-        float ll = length(l);
-        discriminant = (rk - ll) * (rk + ll);     // rk^2 - |l|^2 without cancellation
-    } else {                                      // the exact terms
-        vec3 terms = nearSurfaceTerms(o * k, centre * k, rk, dn);
-        b = terms.x;
-        c = terms.y;
-        discriminant = terms.z;
+        vec3 l = f + (b / a) * d;                 // centre -> closest point of the line
+        discriminant = a * (rr - dot(l, l));      // = b^2 - a c, without cancellation
+    } else {                                      // near the surface: c exactly
+        c = exactSquaredDistanceMinusRadius(o, centre, r);
+        discriminant = b * b - a * c;
     }
     if (discriminant < 0.0f) return false;
     float q = b + (b >= 0.0f ? 1.0f : -1.0f) * sqrt(discriminant);
@@ -126,9 +105,8 @@ bool intersectSphere(vec3 o, vec3 d, vec3 centre, float r, RG_OUT(vec2) t) {
         t = vec2(0.0f);
         return c == 0.0f;
     }
-    float t0 = c / q, t1 = q;                     // no subtraction of near-equal numbers
-    float scale = perUnit / k;
-    t = vec2(min(t0, t1), max(t0, t1)) * scale;
+    float t0 = c / q, t1 = q / a;                 // no subtraction of near-equal numbers
+    t = vec2(min(t0, t1), max(t0, t1)) * unit;
     return true;
 }
 // [end]
