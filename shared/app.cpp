@@ -1,5 +1,6 @@
 #include "app.h"
 
+#include "interrupt.h"
 #include "vk_check.h"
 
 #include <cstdio>
@@ -18,6 +19,7 @@ void initApp(App& app, const Options& opts, const std::string& title) {
     gpu.physical = pickPhysicalDevice(gpu.instance, surface, opts.device);
     std::printf("Using [%u] %s (%s)\n", gpu.physical.index, gpu.physical.properties.deviceName,
                 gpu.physical.driver.c_str());
+    std::fflush(stdout);  // shown at once, also when the output goes to a file or a pipe
     gpu.device = createDevice(gpu.physical, surface != VK_NULL_HANDLE, app.deletion);
     vkGetDeviceQueue(gpu.device, gpu.physical.queueFamily, 0, &gpu.queue);
     VkCommandPoolCreateInfo pool{
@@ -34,16 +36,28 @@ void initApp(App& app, const Options& opts, const std::string& title) {
     });
 }
 
+App::~App() {
+    // An error or a lost window can unwind while frames are in flight:
+    // nothing may be destroyed before the GPU is done with it.
+    if (gpu.device) vkDeviceWaitIdle(gpu.device);
+}
+
 int runChapter(const Options& opts, const std::function<void()>& body) {
+    installInterruptHandlers();
     int code = 0;
     try {
         body();
     } catch (const InputError& e) {
-        std::fprintf(stderr, "%s: error: %s\n", opts.chapter.c_str(), e.what());
+        std::fprintf(stderr, "%s: error: %s\n", opts.chapter.c_str(), escapeControl(e.what()).c_str());
         code = 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: error: %s\n", opts.chapter.c_str(), e.what());
+        std::fprintf(stderr, "%s: error: %s\n", opts.chapter.c_str(), escapeControl(e.what()).c_str());
         code = 1;
+    }
+    if (code == 0 && interrupted()) {
+        std::fprintf(stderr, "%s: interrupted by %s: %s\n", opts.chapter.c_str(), interruptSignalName().c_str(),
+                     interruptedRunSummary().c_str());
+        return 130;  // 128 + SIGINT, as shells report it
     }
     uint32_t messages = validationMessageCount().load();
     if (messages > 0) {

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "context.h"
 #include "deletion_queue.h"
+#include "files.h"
 #include "window.h"
 
 #include <functional>
@@ -12,15 +13,13 @@
 
 namespace rg {
 
-// Bad input from the user (a scene file, a value): exit code 2, like a bad flag.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 struct App {
     std::unique_ptr<Window> window;  // declared first: outlives the queue below
     DeletionQueue deletion;          // flushed first: device objects, then the instance
     Gpu gpu;
+    App() = default;
+    App(const App&) = delete;
+    ~App();  // waits until the device is idle, then the members go
 };
 
 // Window (unless headless), instance, surface, physical device, device,
@@ -28,8 +27,8 @@ struct App {
 void initApp(App& app, const Options& opts, const std::string& title);
 
 // Runs a chapter's body: prints any error as one line and returns the exit
-// code (1 for a failure, 2 for bad input); with --validation, any validation
-// message makes a clean run return 1 too.
+// code (1 for a failure, 2 for bad input, 130 after a signal, interrupt.h);
+// with --validation, any validation message makes a clean run return 1 too.
 int runChapter(const Options& opts, const std::function<void()>& body);
 
 }  // namespace rg

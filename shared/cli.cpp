@@ -1,5 +1,7 @@
 #include "cli.h"
 
+#include "files.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -84,7 +86,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, const std::string& ch
         std::printf("%s", app.help().c_str());
         return 0;
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "%s: error: %s (see --help)\n", chapter.c_str(), e.what());
+        std::fprintf(stderr, "%s: error: %s (see --help)\n", chapter.c_str(), escapeControl(e.what()).c_str());
         return 2;
     }
     if (!opts.headless && !displayAvailable()) opts.headless = true;

@@ -126,11 +126,16 @@ VkInstance createInstance(const std::string& appName, bool validation,
     VkResult created = vkCreateInstance(&info, nullptr, &instance);
     // The two failures a user meets (no driver, no validation layer) are not
     // bugs: say what to install instead of where in the code it failed.
-    if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
-        throw std::runtime_error(
-            "no Vulkan driver found. Install one: tools/setup.sh does (on Debian 12, Mesa's lavapipe, "
-            "mesa-vulkan-drivers >= 24.1 from bookworm-backports), or your GPU's driver; if VK_ICD_FILENAMES or "
-            "VK_DRIVER_FILES is set, it must name an existing driver .json");
+    // A driver manifest the loader cannot parse (a truncated .json) makes
+    // it fail with VK_ERROR_OUT_OF_HOST_MEMORY: the same advice applies.
+    const char* install =
+        "Install one: tools/setup.sh does (on Debian 12, Mesa's lavapipe, mesa-vulkan-drivers >= 24.1 from "
+        "bookworm-backports), or your GPU's driver; if VK_ICD_FILENAMES or VK_DRIVER_FILES is set, it must name an "
+        "existing, readable driver .json";
+    if (created == VK_ERROR_INCOMPATIBLE_DRIVER) throw std::runtime_error(std::string("no Vulkan driver found. ") + install);
+    if (created == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw std::runtime_error(std::string("no usable Vulkan driver (the loader returned VK_ERROR_OUT_OF_HOST_MEMORY, "
+                                             "as it does for a driver manifest it cannot read). ") + install);
     if (created == VK_ERROR_LAYER_NOT_PRESENT)
         throw std::runtime_error("--validation needs the Khronos validation layer (Debian: vulkan-validationlayers)");
     VK_CHECK(created);

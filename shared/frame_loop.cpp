@@ -1,5 +1,7 @@
 #include "frame_loop.h"
 
+#include "interrupt.h"
+
 #include "vk_check.h"
 
 #include <algorithm>
@@ -88,6 +90,7 @@ FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
     times = {};
     uint32_t frame = 0;
     while (frames == 0 || frame < uint32_t(frames)) {
+        if (interrupted()) break;  // Ctrl-C: the frames in flight finish below, then the run writes them
         auto cpuStart = std::chrono::steady_clock::now();
         if (window_) {
             window_->pollEvents();

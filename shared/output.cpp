@@ -1,6 +1,8 @@
 #include "output.h"
 
 #include "display.h"
+#include "files.h"
+#include "interrupt.h"
 #include "vk_check.h"
 
 #include <stb_image_write.h>
@@ -15,27 +17,6 @@
 
 namespace rg {
 
-namespace {
-// Outputs may name folders that do not exist yet (--output out/NN.png).
-void makeParent(const std::string& path) {
-    std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    std::error_code ignored;  // a failure shows as "cannot write" below
-    if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
-}
-
-// Every output goes through here: each step is checked, the close too, since
-// a full disk often shows only when buffered bytes are flushed.
-void writeFile(const std::string& path, const void* bytes, size_t size) {
-    makeParent(path);
-    std::FILE* file = std::fopen(path.c_str(), "wb");
-    if (!file) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    int error = 0;  // the first failure's errno
-    if (std::fwrite(bytes, 1, size, file) != size) error = errno;
-    if (std::fflush(file) != 0 && !error) error = errno;
-    if (std::fclose(file) != 0 && !error) error = errno;
-    if (error) throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
-}
-}  // namespace
 
 FloatImage readImage(const Gpu& gpu, const Image& image, VkPipelineStageFlags lastWriter) {
     FloatImage out{image.extent.width, image.extent.height, {}};
@@ -84,7 +65,7 @@ void writePng(const std::string& path, const FloatImage& image) {
     if (!stbi_write_png_to_func(append, &png, int(image.width), int(image.height), 3, rgb.data(),
                                 int(image.width) * 3))
         throw std::runtime_error("cannot encode " + path);
-    writeFile(path, png.data(), png.size());
+    writeFileAtomically(path, png.data(), png.size());
 }
 
 void writePfm(const std::string& path, const FloatImage& image) {
@@ -93,7 +74,7 @@ void writePfm(const std::string& path, const FloatImage& image) {
     for (uint32_t y = image.height; y-- > 0;)  // PFM stores the bottom row first
         for (uint32_t x = 0; x < image.width; ++x)
             pfm.append(reinterpret_cast<const char*>(&image.rgba[4 * (size_t(y) * image.width + x)]), 12);
-    writeFile(path, pfm.data(), pfm.size());
+    writeFileAtomically(path, pfm.data(), pfm.size());
 }
 
 FloatImage readPfm(const std::string& path) {
@@ -129,7 +110,7 @@ nlohmann::json stats(const std::vector<double>& v) {
 }  // namespace
 
 nlohmann::json makeReport(const Options& opts, const Gpu& gpu, const FrameTimes& times) {
-    return {
+    nlohmann::json report = {
         {"chapter", opts.chapter},
         {"device", gpu.physical.properties.deviceName},
         {"driver", gpu.physical.driver},
@@ -142,11 +123,19 @@ nlohmann::json makeReport(const Options& opts, const Gpu& gpu, const FrameTimes&
         {"validation", opts.validation},
         {"validation_messages", validationMessageCount().load()},
     };
+    if (interrupted()) {  // Ctrl-C: the frames done so far (interrupt.h)
+        std::string requested = opts.framesToRun() > 0 ? std::to_string(opts.framesToRun()) : "unlimited";
+        report["interrupted"] = {{"signal", interruptSignalName()}, {"frames_done", times.gpuMs.size()},
+                                 {"frames_requested", requested}};
+        setInterruptedRunSummary("after " + std::to_string(times.gpuMs.size()) + " of " + requested +
+                                 " frames; the outputs hold the frames done");
+    }
+    return report;
 }
 
 void writeReport(const std::string& path, const nlohmann::json& report) {
     std::string text = report.dump(2) + "\n";
-    writeFile(path, text.data(), text.size());
+    writeFileAtomically(path, text.data(), text.size());
 }
 
 }  // namespace rg

@@ -1,5 +1,7 @@
 #include "reference.h"
 
+#include "interrupt.h"
+
 #include "display.h"
 #include "progress.h"
 #include "rt_scene.h"
@@ -386,7 +388,7 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
     for (unsigned t = 0; t < threads; ++t)
         workers.emplace_back([&, t] {
             for (uint32_t y = t; y < height; y += threads, ++rowsDone)
-                for (uint32_t x = 0; x < width; ++x) {
+                for (uint32_t x = 0; x < width && !interrupted(); ++x) {  // Ctrl-C: the rest stays unset
                     double stdError = 0;
                     glm::dvec3 c = shade(settings, x, y, width, height, &stdError);
                     float* p = &image.rgba[4 * (size_t(y) * width + x)];

@@ -3,6 +3,7 @@
 #include "app.h"
 #include "frame_loop.h"
 #include "host_device.h"
+#include "device_limits.h"
 #include "rt_pipeline.h"
 #include "rt_report.h"
 #include "rt_scene.h"
@@ -29,6 +30,11 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath("default") : opts.scene));
         App app;
         initApp(app, opts, chapter.title);
+        // What grows with the image: the ray counts (4 bytes a pixel) and
+        // chapter 10's queue of ray trees (a quarter of the pixels, 128 bytes each).
+        double queueBytesPerPixel = settings.launches >= 0 ? sizeof(gpu::QueuedTree) / 4.0 : 0.0;
+        checkImageFits(app.gpu, opts.width, opts.height,
+                       {.storageBytesPerPixel = 4, .addressedBytesPerPixel = queueBytesPerPixel});
         Image target = createImage2D(app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         RtScene rt = uploadScene(app.gpu, app.deletion, scene, target,

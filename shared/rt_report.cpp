@@ -1,5 +1,7 @@
 #include "rt_report.h"
 
+#include "interrupt.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -7,9 +9,45 @@
 
 namespace rg {
 
+namespace {
+// --reference: the CPU reference at the same size, its error images and the
+// error in the report. A reference cut short by Ctrl-C is no reference: then
+// nothing of it is written.
+void compareWithReference(nlohmann::json& report, const Scene& scene, const ReferenceSettings& settings,
+                          const FloatImage& image, const std::string& output) {
+    auto start = std::chrono::steady_clock::now();
+    ReferenceRenderer reference(scene);
+    FloatImage expected = reference.render(settings, image.width, image.height);
+    if (interrupted()) return;
+    double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    FloatImage heat;
+    ImageError e = compareImages(image, expected, &heat);
+    std::filesystem::path png(output);
+    std::string stem = (png.parent_path() / png.stem()).string();
+    writePng(stem + "_reference.png", expected);
+    writePfm(stem + "_reference.pfm", expected);
+    writePng(stem + "_error.png", heat);
+    report["error"] = {{"rmse", e.rmse}, {"max_abs", e.maxAbs}, {"frac_over_1_255", e.fracOver1_255},
+                       {"psnr_db", e.psnrDb}, {"non_finite_pixels", e.nonFinite},
+                       {"reference_cpu_ms", cpuMs}, {"heat_map", stem + "_error.png"}};
+    if (settings.stage == ReferenceStage::Rough) {  // the reference's own error
+        double sumSq = 0;
+        for (size_t i = 3; i < expected.rgba.size(); i += 4) sumSq += double(expected.rgba[i]) * expected.rgba[i];
+        double rms = std::sqrt(sumSq / double(expected.rgba.size() / 4));
+        report["error"]["reference_samples"] = settings.samples;
+        report["error"]["reference_std_error_rms"] = rms;
+        std::printf("reference: %d samples per rough hit, its own standard error (RMS over pixels) %.2e\n",
+                    settings.samples, rms);
+    }
+    std::printf("vs CPU reference: rmse %.2e, max %.2e, %.4f%% of pixels off by > 1/255, PSNR %.1f dB\n", e.rmse,
+                e.maxAbs, 100 * e.fracOver1_255, e.psnrDb);
+}
+}  // namespace
+
 nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& scene, const RtScene& rt,
                            const Image& target, const FrameTimes& times, const ReferenceSettings& referenceSettings,
                            const nlohmann::json& extra) {
+    if (interrupted() && times.gpuMs.empty()) return {};  // stopped before the first frame: nothing to write
     FloatImage image = readImage(app.gpu, target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
     std::filesystem::path png(opts.output);
     writePng(opts.output, image);
@@ -40,32 +78,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
     std::printf("GPU median %.3f ms over %zu frames, %llu rays per frame, %.1f Mrays/s\n", medianMs,
                 times.gpuMs.size(), (unsigned long long)rays, report["mrays_per_s"].get<double>());
 
-    if (opts.reference) {
-        auto start = std::chrono::steady_clock::now();
-        ReferenceRenderer reference(scene);
-        FloatImage expected = reference.render(referenceSettings, image.width, image.height);
-        double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        FloatImage heat;
-        ImageError e = compareImages(image, expected, &heat);
-        std::string stem = (png.parent_path() / png.stem()).string();
-        writePng(stem + "_reference.png", expected);
-        writePfm(stem + "_reference.pfm", expected);
-        writePng(stem + "_error.png", heat);
-        report["error"] = {{"rmse", e.rmse}, {"max_abs", e.maxAbs}, {"frac_over_1_255", e.fracOver1_255},
-                           {"psnr_db", e.psnrDb}, {"non_finite_pixels", e.nonFinite},
-                           {"reference_cpu_ms", cpuMs}, {"heat_map", stem + "_error.png"}};
-        if (referenceSettings.stage == ReferenceStage::Rough) {  // the reference's own error
-            double sumSq = 0;
-            for (size_t i = 3; i < expected.rgba.size(); i += 4) sumSq += double(expected.rgba[i]) * expected.rgba[i];
-            double rms = std::sqrt(sumSq / double(expected.rgba.size() / 4));
-            report["error"]["reference_samples"] = referenceSettings.samples;
-            report["error"]["reference_std_error_rms"] = rms;
-            std::printf("reference: %d samples per rough hit, its own standard error (RMS over pixels) %.2e\n",
-                        referenceSettings.samples, rms);
-        }
-        std::printf("vs CPU reference: rmse %.2e, max %.2e, %.4f%% of pixels off by > 1/255, PSNR %.1f dB\n", e.rmse,
-                    e.maxAbs, 100 * e.fracOver1_255, e.psnrDb);
-    }
+    if (opts.reference && !interrupted()) compareWithReference(report, scene, referenceSettings, image, opts.output);
     report.update(extra);
     report["validation_messages"] = validationMessageCount().load();
     writeReport(opts.report, report);

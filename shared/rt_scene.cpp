@@ -3,6 +3,7 @@
 #include "app.h"
 #include "display.h"
 #include "host_device.h"
+#include "device_limits.h"
 #include "vk_check.h"
 
 #include <stb_image.h>
@@ -19,7 +20,11 @@ SkyTexels loadSky(const Scene& scene) {
     if (scene.sky.image.empty()) return sky;
     int w = 0, h = 0, n = 0;
     unsigned char* data = stbi_load(scene.sky.image.c_str(), &w, &h, &n, 4);
-    if (!data) throw InputError(scene.path + ": sky.image: cannot read " + scene.sky.image + " (" + stbi_failure_reason() + ")");
+    if (!data) {
+        std::string reason = stbi_failure_reason() ? stbi_failure_reason() : "";
+        throw InputError(scene.path + ": sky.image: cannot read " + scene.sky.image + " (" +
+                         (reason.empty() ? "not an image stb_image reads, or a truncated one" : reason) + ")");
+    }
     sky.width = uint32_t(w);
     sky.height = uint32_t(h);
     sky.rgba.resize(size_t(w) * h * 4);
@@ -67,6 +72,39 @@ gpu::GpuMaterial toGpuMaterial(const Material& m) {
             glm::vec4(float(m.f0), float(m.roughness), 0, 0)};
 }
 
+// The scene's buffers and structures against the device's limits, before
+// they are made: the largest storage buffers (objects, the sky's texels)
+// and the instance and box counts of the acceleration structures.
+void checkSceneFits(const Gpu& gpu, const Scene& scene, size_t grouped, size_t instanced) {
+    SkyTexels sky = loadSky(scene);  // read twice when it fits: small next to tracing
+    std::string name;
+    double limit = storageBufferLimit(gpu, &name);
+    double skyBytes = double(sky.rgba.size()) * sizeof(float);
+    if (skyBytes > limit) {
+        double texels = std::floor(limit / 16), scale = std::sqrt(texels / (double(sky.width) * sky.height));
+        throw InputError(scene.path + ": sky.image: its " + std::to_string(sky.width) + "x" +
+                         std::to_string(sky.height) + " texels need " + mebibytes(skyBytes) +
+                         " in one storage buffer, more than this device's " + name + " (" + mebibytes(limit) +
+                         "); an image of at most " + std::to_string(uint32_t(sky.width * scale)) + "x" +
+                         std::to_string(uint32_t(sky.height * scale)) + " fits");
+    }
+    double objectBytes = double(scene.objects.size() + grouped) * sizeof(gpu::GpuObject);
+    if (objectBytes > limit)
+        throw InputError(scene.path + ": objects: " + std::to_string(scene.objects.size()) + " objects need " +
+                         mebibytes(objectBytes) + " in one storage buffer, more than this device's " + name + " (" +
+                         mebibytes(limit) + "); at most " +
+                         std::to_string(uint64_t(limit / (2 * sizeof(gpu::GpuObject)))) + " spheres fit");
+    const auto& as = gpu.physical.accelerationStructure;
+    if (instanced + 1 > as.maxInstanceCount)
+        throw InputError(scene.path + ": objects: " + std::to_string(instanced) +
+                         " instances, more than this device's maxInstanceCount (" +
+                         std::to_string(as.maxInstanceCount) + ")");
+    if (grouped > as.maxPrimitiveCount)
+        throw InputError(scene.path + ": objects: " + std::to_string(grouped) +
+                         " spheres in one group, more than this device's maxPrimitiveCount (" +
+                         std::to_string(as.maxPrimitiveCount) + ")");
+}
+
 // [region layout]
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene, const Image& target,
                     const SceneLayout& layout) {
@@ -84,6 +122,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         grouped = medianSplitOrder(scene, std::move(grouped));
         instanced = medianSplitOrder(scene, std::move(instanced));
     }
+    checkSceneFits(gpu, scene, grouped.size(), instanced.size());
     // The group's entries go after the scene's own objects in the GPU's array.
     rt.group = buildSphereGroup(gpu, deletion, scene, grouped, uint32_t(scene.objects.size()));
     rt.instances = makeInstances(scene, rt.shapes, instanced, &rt.group);

@@ -1,6 +1,6 @@
 #include "scene.h"
 
-#include "app.h"
+#include "files.h"
 #include "progress.h"
 #include "resources.h"
 
@@ -41,6 +41,19 @@ class StrictJson : public nlohmann::detail::json_sax_dom_parser<json> {
 public:
     explicit StrictJson(json& j) : json_sax_dom_parser(j, false) {}
     std::string duplicate;  // the first key found twice
+    size_t errorPosition = 0;  // a syntax error: the characters read up to it
+    std::string errorReason;
+
+    template <class Exception>
+    bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
+        errorPosition = position;
+        errorReason = e.what();  // "[json.exception.parse_error.101] parse error at line 1, column 5: why"
+        size_t start = errorReason.find("] ");
+        if (start != std::string::npos) errorReason.erase(0, start + 2);
+        size_t colon = errorReason.find(": ");
+        if (errorReason.rfind("parse error", 0) == 0 && colon != std::string::npos) errorReason.erase(0, colon + 2);
+        return json_sax_dom_parser::parse_error(position, token, e);
+    }
 
     bool start_object(std::size_t n) {
         if (capturing_) return inData(NAN), ++nested_, true;  // an element that is not a number
@@ -113,6 +126,15 @@ private:
     int nested_ = 0;  // containers open inside the captured array
     std::vector<std::uint8_t> bytes_;  // the captured doubles, as the binary value holds them
 };
+
+// "line:column" (both from 1) of the character `position` counts up to.
+std::string lineAndColumn(const std::string& text, size_t position) {
+    size_t end = std::min(position > 0 ? position - 1 : 0, text.size());
+    size_t line = 1 + size_t(std::count(text.begin(), text.begin() + long(end), '\n'));
+    size_t lineStart = text.rfind('\n', end > 0 ? end - 1 : 0);
+    size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
+    return std::to_string(line) + ":" + std::to_string(column);
+}
 
 // Reads one JSON value and names where it came from when it is wrong.
 class Reader {
@@ -257,20 +279,21 @@ std::string defaultScenePath(const std::string& name) {
 
 Scene loadScene(const std::string& path) {
     Reader r(path);
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) throw InputError(path + ": is a folder, not a scene file");
-    std::ifstream file(path);
-    if (!file) throw InputError(path + ": cannot open the scene file");
+    requireRegularFile(path, "--scene");  // a FIFO would block the read, a device never end it
+    std::ifstream file(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    if (!file && !file.eof()) throw InputError(path + ": cannot read the scene file");
     // JSON allows a key twice in one object and keeps the last; in a scene
     // file that is a mistake (two "radius" keys), so the parser refuses it.
     json j;
     StrictJson strict(j);
     try {
-        json::sax_parse(file, &strict);
-    } catch (const std::exception& e) {  // a read error (syntax errors are reported below)
+        json::sax_parse(text, &strict);
+    } catch (const std::exception& e) {  // syntax errors are reported below
         throw InputError(path + ": cannot read the scene file (" + e.what() + ")");
     }
-    if (strict.is_errored() || j.is_discarded()) throw InputError(path + ": not valid JSON");
+    if (strict.is_errored() || j.is_discarded())
+        throw InputError(path + ":" + lineAndColumn(text, strict.errorPosition) + ": not valid JSON: " + strict.errorReason);
     if (!strict.duplicate.empty())
         throw InputError(path + ": key \"" + strict.duplicate + "\" appears twice in one object");
     r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
@@ -298,9 +321,14 @@ Scene loadScene(const std::string& path) {
             // Relative to the scene file first, then to bin/assets/.
             std::filesystem::path besideScene = std::filesystem::path(path).parent_path() / image;
             std::filesystem::path inAssets = executableDir() / "assets" / image;
-            if (std::filesystem::exists(besideScene)) s.sky.image = besideScene.string();
-            else if (std::filesystem::exists(inAssets)) s.sky.image = inAssets.string();
-            else r.fail("sky.image", "no such file: " + image.string());
+            std::error_code error;  // a loop of links: no exception, the check below names it
+            if (std::filesystem::symlink_status(besideScene, error).type() != std::filesystem::file_type::not_found)
+                s.sky.image = besideScene.string();
+            else if (std::filesystem::symlink_status(inAssets, error).type() != std::filesystem::file_type::not_found)
+                s.sky.image = inAssets.string();
+            else
+                r.fail("sky.image", "no such file: " + image.string());
+            requireRegularFile(s.sky.image, path + ": sky.image");
         }
         if (k.contains("top")) s.sky.top = r.vec3(k["top"], "sky.top", 0, kHuge);
         if (k.contains("horizon")) s.sky.horizon = r.vec3(k["horizon"], "sky.horizon", 0, kHuge);

@@ -4,12 +4,16 @@
 //   make_sky OUT.png [width]
 // Directions: u = 0.5 + atan2(x, -z) / 2pi (looking down -z is the centre),
 // v = acos(y) / pi (v = 0 straight up).
+#include "files.h"
+
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
@@ -65,8 +69,15 @@ int main(int argc, char** argv) {
             p[1] = (unsigned char)std::lround(srgb(c.g) * 255);
             p[2] = (unsigned char)std::lround(srgb(c.b) * 255);
         }
-    if (!stbi_write_png(argv[1], w, h, 3, pixels.data(), w * 3)) {
-        std::fprintf(stderr, "make_sky: cannot write %s\n", argv[1]);
+    std::string png;  // encoded in memory, then written whole (shared/files.h)
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    try {
+        if (!stbi_write_png_to_func(append, &png, w, h, 3, pixels.data(), w * 3)) throw std::runtime_error("cannot encode");
+        rg::writeFileAtomically(argv[1], png.data(), png.size());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "make_sky: %s\n", e.what());
         return 1;
     }
     return 0;

@@ -3,6 +3,7 @@
 // --out: perf.json (every number), perf.md (the tables), convergence.dat (for
 // the plots). Needs only the chapter executables beside it, so it runs on a
 // machine without jq or gnuplot; tools/perf-report.sh makes the plots.
+#include "files.h"
 #include "output.h"
 #include "reference.h"
 #include "scene.h"
@@ -19,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -169,7 +171,7 @@ int report(int argc, char** argv) {
         return rg::compareImages(rg::readPfm(outDir + "/runs/" + tag + ".pfm"), against, nullptr).rmse;
     };
     const char* patterns[] = {"uniform", "stratified", "hammersley", "sobol"};
-    std::ofstream dat(outDir + "/convergence.dat");
+    std::ostringstream dat;  // each output written whole at the end (files.h)
     auto& P = data["study"]["patterns"];
 
     // Progressive: one sample per hit and frame, accumulated over 1 ... 1024
@@ -282,10 +284,10 @@ int report(int argc, char** argv) {
                                         {"gpu_ms", r["gpu_ms"].value("median", 0.0)}, {"rmse", e.rmse},
                                         {"frac_over_1_255", e.fracOver1_255}});
     }
-    std::ofstream(outDir + "/perf.json") << data.dump(2) << "\n";
+    std::string perfJson = data.dump(2) + "\n";
 
     // The tables.
-    std::ofstream md(outDir + "/perf.md");
+    std::ostringstream md;
     md << "### " << data.value("device", "?") << "\n\n"
        << "Driver: " << data.value("driver", "?") << ". Measured " << data["date"].get<std::string>()
        << " with `tools/perf-report.sh`. GPU times are medians of timestamp queries.\n\n"
@@ -359,6 +361,12 @@ int report(int argc, char** argv) {
            << fmt("%.3f", m["gpu_ms"].get<double>()) << " | " << fmt("%.2e", m["rmse"].get<double>()) << " | "
            << fmt("%.2f", 100 * m["frac_over_1_255"].get<double>()) << " % |\n";
     }
+    auto write = [&](const std::string& name, const std::string& text) {
+        rg::writeFileAtomically(outDir + "/" + name, text.data(), text.size());
+    };
+    write("perf.json", perfJson);
+    write("perf.md", md.str());
+    write("convergence.dat", dat.str());
     std::printf("wrote %s/perf.json, perf.md, convergence.dat\n", outDir.c_str());
     return 0;
 }

@@ -15,7 +15,7 @@ build=build-asan
 
 chapters=(01_vulkan_setup 02_synchronization 03_acceleration_structures 04_raygen_miss 05_ambient 06_diffuse
           07_specular 08_reflection 09_fresnel 10_refraction 11_rough)
-units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz)
+units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults)
 echo "== sanitizer build in $build (ASan + UBSan, -O1)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON >/dev/null ||
   exit 1
@@ -50,6 +50,9 @@ check() {  # name, command...
 }
 for t in test_sphere_intersection test_sbt test_fresnel test_sampling; do check "$t" "$build/bin/$t"; done
 check test_scene_fuzz env RG_FUZZ_STRIDE=3 RG_FUZZ_SECONDS=60 "$build/bin/test_scene_fuzz" --gtest_filter='*Loader*'
+# The fault suite (signals, a full disk, special files, limits): its chapters
+# run sanitized too, and any report breaks their one line of stderr.
+check test_faults env LD_PRELOAD="$preload" "$build/bin/test_faults"
 for c in "${chapters[@]}"; do
   args=(--headless --validation --width 64 --height 36 --frames 2 --output "$out/$c.png")
   [ "${c%%_*}" -ge 4 ] && args+=(--reference)

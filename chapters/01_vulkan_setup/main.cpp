@@ -6,8 +6,10 @@
 #include "app.h"
 #include "cli.h"
 #include "context.h"
+#include "device_limits.h"
 #include "gpu_timer.h"
 #include "host_device.h"
+#include "interrupt.h"
 #include "output.h"
 #include "resources.h"
 #include "vk_check.h"
@@ -243,6 +245,7 @@ int main(int argc, char** argv) {
         });
 
         // The storage image the shader writes: linear RGBA, 32-bit float.
+        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});  // before any work
         rg::Image target = rg::createImage2D(gpu, deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         Descriptors descriptors = createDescriptors(gpu, target, deletion);
@@ -270,6 +273,7 @@ int main(int argc, char** argv) {
             times.gpuMs.push_back(timer.readMs(0));
             times.cpuMs.push_back(
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count());
+            if (rg::interrupted()) break;  // Ctrl-C: keep the frames done (shared/interrupt.h)
         }
         std::printf("GPU time for the dispatch: %.3f ms (median of %zu)\n", rg::median(times.gpuMs),
                     times.gpuMs.size());

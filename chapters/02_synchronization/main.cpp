@@ -7,8 +7,10 @@
 #include "app.h"
 #include "cli.h"
 #include "descriptors.h"
+#include "device_limits.h"
 #include "frame_loop.h"
 #include "host_device.h"
+#include "interrupt.h"
 #include "output.h"
 #include "resources.h"
 #include "vk_check.h"
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
     return rg::runChapter(opts, [&] {
         rg::App app;
         rg::initApp(app, opts, "RayGlass 02: synchronization");
+        rg::checkImageFits(app.gpu, opts.width, opts.height, {.rayTracing = false});  // before any work
         rg::Image target = rg::createImage2D(app.gpu, app.deletion, opts.width, opts.height,
                                              VK_FORMAT_R32G32B32A32_SFLOAT,
                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -87,6 +90,7 @@ int main(int argc, char** argv) {
             std::printf("frame %zu: GPU %.3f ms, CPU %.3f ms\n", i, times.gpuMs[i], times.cpuMs[i]);
         std::printf("median over %zu frames: GPU %.3f ms, CPU %.3f ms\n", times.gpuMs.size(),
                     rg::median(times.gpuMs), rg::median(times.cpuMs));
+        if (rg::interrupted() && times.gpuMs.empty()) return;  // Ctrl-C before the first frame: nothing to write
         rg::FloatImage image = rg::readImage(app.gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         rg::writePng(opts.output, image);
         nlohmann::json report = rg::makeReport(opts, app.gpu, times);

@@ -9,9 +9,11 @@
 #include "accel.h"
 #include "app.h"
 #include "descriptors.h"
+#include "device_limits.h"
 #include "frame_loop.h"
 #include "gpu_timer.h"
 #include "host_device.h"
+#include "interrupt.h"
 #include "output.h"
 #include "scene.h"
 #include "vk_check.h"
@@ -77,6 +79,7 @@ int main(int argc, char** argv) {
         printStatistics(shapes, tlas);
 
         // The top view: a compute shader reads the TLAS's instance buffer.
+        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});  // before any work
         rg::Image target = rg::createImage2D(gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         rg::DescriptorSet set = rg::createDescriptorSet(gpu, app.deletion, {
@@ -137,6 +140,7 @@ int main(int argc, char** argv) {
         std::printf("median frame (refit + top view): GPU %.3f ms over %zu frames; the refit alone %.3f ms\n",
                     rg::median(times.gpuMs), times.gpuMs.size(), rg::median(refitMs));
 
+        if (rg::interrupted() && times.gpuMs.empty()) return;  // Ctrl-C before the first frame: nothing to write
         rg::FloatImage image = rg::readImage(gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         rg::writePng(opts.output, image);
         nlohmann::json report = rg::makeReport(opts, gpu, times);
