@@ -31,6 +31,11 @@ void vkCheckFailed(const char* call, VkResult result, const char* file, int line
     const char* base = std::strrchr(file, '/');
     std::string what = std::string(call) + " returned " + vkResultName(result) + " at " +
                        (base ? base + 1 : file) + ":" + std::to_string(line);
+    // Out of memory is no bug: say what to try (what was made is freed as
+    // the error unwinds through the deletion queues).
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        what = std::string(result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "out of GPU memory" : "out of host memory") +
+               " (" + what + "); try a smaller --width and --height or a smaller scene";
     throw VulkanError(what, result);
 }
 
