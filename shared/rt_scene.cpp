@@ -75,8 +75,7 @@ gpu::GpuMaterial toGpuMaterial(const Material& m) {
 // The scene's buffers and structures against the device's limits, before
 // they are made: the largest storage buffers (objects, the sky's texels)
 // and the instance and box counts of the acceleration structures.
-void checkSceneFits(const Gpu& gpu, const Scene& scene, size_t grouped, size_t instanced) {
-    SkyTexels sky = loadSky(scene);  // read twice when it fits: small next to tracing
+void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky, size_t grouped, size_t instanced) {
     std::string name;
     double limit = storageBufferLimit(gpu, &name);
     double skyBytes = double(sky.rgba.size()) * sizeof(float);
@@ -122,14 +121,14 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         grouped = medianSplitOrder(scene, std::move(grouped));
         instanced = medianSplitOrder(scene, std::move(instanced));
     }
-    checkSceneFits(gpu, scene, grouped.size(), instanced.size());
+    SkyTexels sky = loadSky(scene);
+    checkSceneFits(gpu, scene, sky, grouped.size(), instanced.size());
     // The group's entries go after the scene's own objects in the GPU's array.
     rt.group = buildSphereGroup(gpu, deletion, scene, grouped, uint32_t(scene.objects.size()));
     rt.instances = makeInstances(scene, rt.shapes, instanced, &rt.group);
     rt.tlas = buildTlas(gpu, deletion, rt.instances);
 // [end]
 
-    SkyTexels sky = loadSky(scene);
     gpu::RtCamera camera{};
     cameraMatrices(scene.camera, double(rt.width) / rt.height, camera.viewInverse, camera.projInverse);
     camera.skyTop = v4(scene.sky.top);
