@@ -155,7 +155,8 @@ static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
     };
 }
 
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel) {
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel, const Scene* scene,
+                           bool fileOrder) {
     UnitShapes shapes;
     DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
     const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
@@ -192,23 +193,56 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     shapes.sphere = buildCompactedBlas(gpu, deletion, aabbs, 1, shapes.stats.back());
     // [end]
 
+    // Chapter 12: each mesh of the scene once, however many objects place it.
+    if (scene)
+        for (const auto& mesh : scene->meshes) {
+            shapes.stats.push_back({.name = mesh->name, .geometry = "triangles"});
+            if (fileOrder) {
+                shapes.meshes.push_back(buildMeshBlas(gpu, deletion, *mesh, shapes.stats.back()));
+            } else {
+                Mesh ordered = *mesh;
+                medianSplitTriangles(ordered);
+                shapes.meshes.push_back(buildMeshBlas(gpu, deletion, ordered, shapes.stats.back()));
+            }
+        }
     if (sphereMeshLevel > 0) {  // the tessellated alternative (performance.md)
-        Mesh mesh = icosphere(sphereMeshLevel);
-        const VkBufferUsageFlags meshUsage = input | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        shapes.meshVertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(),
-                                                 mesh.vertices.size() * sizeof(glm::vec3), meshUsage);
-        shapes.meshIndices = createDeviceBuffer(gpu, deletion, mesh.indices.data(),
-                                                mesh.indices.size() * sizeof(uint32_t), meshUsage);
-        VkAccelerationStructureGeometryKHR meshTriangles = triangles;
-        meshTriangles.geometry.triangles.vertexData.deviceAddress = shapes.meshVertices.address;
-        meshTriangles.geometry.triangles.maxVertex = uint32_t(mesh.vertices.size() - 1);
-        meshTriangles.geometry.triangles.indexData.deviceAddress = shapes.meshIndices.address;
         shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel), .geometry = "triangles"});
-        shapes.meshSphere = buildCompactedBlas(gpu, deletion, meshTriangles, uint32_t(mesh.indices.size() / 3),
-                                               shapes.stats.back());
+        shapes.sphereMesh = int(shapes.meshes.size());
+        shapes.meshes.push_back(buildMeshBlas(gpu, deletion, icosphere(sphereMeshLevel), shapes.stats.back()));
     }
     return shapes;
 }
+
+// [region mesh_blas]
+MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh, BlasStats& stats) {
+    // Read by the build (BUILD_INPUT) and by the closest-hit shader through
+    // its device address: one buffer serves both.
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+                                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    MeshBlas m{.triangles = uint32_t(mesh.indices.size() / 3)};
+    m.vertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(), mesh.vertices.size() * sizeof(glm::vec3), usage);
+    m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage);
+    if (!mesh.normals.empty())
+        m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3), usage);
+    VkAccelerationStructureGeometryKHR triangles{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
+        .geometry = {.triangles = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
+            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
+            .vertexData = {.deviceAddress = m.vertices.address},
+            .vertexStride = sizeof(glm::vec3),
+            .maxVertex = uint32_t(mesh.vertices.size() - 1),  // the highest index any triangle uses, at most
+            .indexType = VK_INDEX_TYPE_UINT32,
+            .indexData = {.deviceAddress = m.indices.address},
+        }},
+        // Opaque: no any-hit shader runs, the closest triangle is the hit.
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+    };
+    m.blas = buildCompactedBlas(gpu, deletion, triangles, m.triangles, stats);
+    return m;
+}
+// [end]
 
 // [region transform]
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
@@ -221,7 +255,7 @@ VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
 
 // [region median_split]
 struct Centred {
-    glm::dvec3 centre;  // of the object's box
+    glm::dvec3 centre;  // of the object's box (or the triangle's centroid)
     uint32_t object;
 };
 
@@ -253,6 +287,21 @@ std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t>
     return objects;
 }
 // [end]
+
+// Chapter 12: the same for a mesh's triangles, by their centroids.
+void medianSplitTriangles(Mesh& mesh) {
+    std::vector<Centred> list(mesh.indices.size() / 3);
+    for (uint32_t t = 0; t < list.size(); ++t) {
+        glm::dvec3 sum(0);
+        for (int c = 0; c < 3; ++c) sum += glm::dvec3(mesh.vertices[mesh.indices[3 * t + c]]);
+        list[t] = {sum / 3.0, t};
+    }
+    splitAtMedian(list.data(), list.data() + list.size());
+    std::vector<uint32_t> indices(mesh.indices.size());
+    for (size_t k = 0; k < list.size(); ++k)
+        for (int c = 0; c < 3; ++c) indices[3 * k + c] = mesh.indices[3 * list[k].object + c];
+    mesh.indices = std::move(indices);
+}
 
 bool inSphereGroup(const Object& o) {
     if (o.type != ShapeType::Sphere || o.moving || o.hidden) return false;
@@ -314,14 +363,14 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene
     for (uint32_t i : objects) {
         const Object& o = scene.objects[i];
         bool sphere = o.type == ShapeType::Sphere;
-        bool mesh = sphere && shapes.meshSphere.handle != VK_NULL_HANDLE;  // --sphere-mesh
+        int mesh = o.type == ShapeType::Mesh ? int(o.mesh) : sphere ? shapes.sphereMesh : -1;  // --sphere-mesh
         instances.push_back({
             .transform = toVkTransform(o.transform),
             .instanceCustomIndex = uint32_t(i),  // gl_InstanceCustomIndexEXT: the object
             .mask = o.hidden ? 0x00u : 0xFFu,    // every ray sees every instance, but a hidden copy
-            .instanceShaderBindingTableRecordOffset = mesh ? 2u : sphere ? 1u : 0u,  // hit group
-            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // quads are two-sided
-            .accelerationStructureReference = mesh ? shapes.meshSphere.address
+            .instanceShaderBindingTableRecordOffset = mesh >= 0 ? 2u : sphere ? 1u : 0u,  // hit group
+            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // both sides of every triangle
+            .accelerationStructureReference = mesh >= 0 ? shapes.meshes[mesh].blas.address
                                               : sphere ? shapes.sphere.address : shapes.quad.address,
         });
     }

@@ -3,6 +3,7 @@
 // instances of BLASes, each with a world transform.
 #pragma once
 #include "context.h"
+#include "mesh.h"
 #include "resources.h"
 #include "scene.h"
 
@@ -25,18 +26,33 @@ struct BlasStats {
     double buildMs = 0, compactMs = 0;
 };
 
+// Chapter 12: a triangle mesh on the GPU. The BLAS is built from the
+// vertex and index buffers, which stay: the closest-hit shader reads them
+// by their device addresses (barycentrics, smooth normals).
+struct MeshBlas {
+    AccelerationStructure blas;
+    Buffer vertices, normals, indices;  // normals: empty when the mesh has none (flat faces)
+    uint32_t triangles = 0;
+};
+// Builds `mesh` as given: its triangles in the order they come (chapter 03:
+// on lavapipe that order is the tree; medianSplitTriangles first).
+MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh, BlasStats& stats);
+
 // The two unit shapes every scene object instances (scene.h): the quad
 // [-1,1] x {0} x [-1,1] as two triangles, and the box [-1,1]^3 that holds the
 // analytic unit sphere (an intersection shader finds the sphere inside it).
+// Chapter 12 adds the scene's meshes, each once.
 struct UnitShapes {
     AccelerationStructure quad, sphere;
-    AccelerationStructure meshSphere;  // only with sphereMeshLevel > 0
-    Buffer meshVertices, meshIndices;  // its triangles, also read by its closest-hit shader
+    std::vector<MeshBlas> meshes;  // Scene::meshes in order, then the icosphere of sphereMeshLevel > 0
+    int sphereMesh = -1;           // which of `meshes` replaces the analytic sphere (-1: none)
     std::vector<BlasStats> stats;
 };
 // sphereMeshLevel > 0 also builds an icosphere of that subdivision level,
 // which makeInstances then uses for every sphere instead of the analytic one.
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0);
+// `scene` (chapter 12): its meshes too, in median-split order unless `fileOrder`.
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0,
+                           const Scene* scene = nullptr, bool fileOrder = false);
 
 // The order in which objects go into a structure (thesis 2.2.1). A builder
 // may take the order it is given as the tree: lavapipe's splits the list at
@@ -48,11 +64,13 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
 std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t> objects);
 std::vector<uint32_t> fileOrder(const Scene& scene);  // every object: 0, 1, 2, ...
 inline std::vector<uint32_t> medianSplitOrder(const Scene& scene) { return medianSplitOrder(scene, fileOrder(scene)); }
+// Chapter 12: a mesh's triangles in the same order, by their centroids.
+void medianSplitTriangles(Mesh& mesh);
 
 // TLAS instances: instance k is object objects[k] (its custom index is the
 // object's index, which the shaders use), pointing at the quad or sphere
-// BLAS with the object's transform. Hit group offset: 0 for triangles, 1 for
-// spheres, 2 for the sphere mesh (chapter 04's SBT).
+// BLAS with the object's transform. Hit group offset: 0 for quads, 1 for
+// spheres, 2 for meshes and the sphere mesh (chapter 04's SBT).
 // The thesis's other layout (2.2.1: spatially close geometry belongs in one
 // BLAS): static, visible spheres become boxes of a single BLAS of AABBs, in
 // the order given, placed by one instance with the identity transform.

@@ -78,16 +78,16 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RT_BINDING_LIGHTS 5     // GpuLight[]
 #define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
 #define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
-#define RT_BINDING_MESH_VERTICES 8  // float[] x,y,z of the tessellated unit sphere (--sphere-mesh)
-#define RT_BINDING_MESH_INDICES 9   // uint[] three per triangle
+#define RT_BINDING_MESHES 8     // GpuMesh[]: where each mesh's buffers are (chapter 12, --sphere-mesh)
 
 #define SHAPE_SPHERE 0u
 #define SHAPE_QUAD 1u
+#define SHAPE_MESH 2u
 
 // Hit groups in the SBT: one per shape and ray type (see shared/sbt.h).
 #define HIT_GROUP_QUAD 0u
 #define HIT_GROUP_SPHERE 1u
-#define HIT_GROUP_MESH_SPHERE 2u  // a tessellated sphere (chapters 05+, --sphere-mesh)
+#define HIT_GROUP_MESH 2u  // triangle meshes (chapter 12) and the tessellated sphere (--sphere-mesh)
 #define RAY_TYPE_PRIMARY 0u  // sbtRecordOffset of camera and bounce rays
 #define RAY_TYPE_SHADOW 3u   // sbtRecordOffset of shadow rays (chapter 06 on): after the 3 primary groups
 #define MISS_SKY 0u
@@ -110,10 +110,23 @@ struct GpuObject {
                     // for an instance of the unit sphere, the real one in a sphere group
     uint shape;     // SHAPE_*
     uint material;  // index into materials
-    float radius;   // world space: the ball of this radius about the centre holds the shape (0: a quad)
-    uint pad0;
+    float radius;   // world space: the ball of this radius about the centre holds the shape (0: a quad, a mesh)
+    uint mesh;      // SHAPE_MESH: index into the mesh table (chapter 12)
 };
 RG_SIZE(GpuObject, 32);
+
+// [region gpu_mesh]
+// Chapter 12: a mesh's buffers by device address (low, high 32 bits), read
+// in the closest-hit shader through GL_EXT_buffer_reference: no descriptor
+// per mesh, however many meshes a scene has.
+struct GpuMesh {
+    uvec2 vertices;  // vec3 positions, tightly packed (the BLAS was built from them)
+    uvec2 normals;   // vec3 per vertex; (0, 0): none, the faces are flat
+    uvec2 indices;   // uint, three per triangle
+    uvec2 pad0;
+};
+RG_SIZE(GpuMesh, 32);
+// [end]
 
 // [region material]
 struct GpuMaterial {

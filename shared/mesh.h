@@ -1,20 +1,36 @@
-// A triangle mesh of the unit sphere, for comparing the analytic sphere
-// (chapter 04) with tessellated ones (docs/performance.md).
+// Triangle meshes (chapter 12): what a mesh file holds once loaded, and the
+// checks every mesh gets before it goes to the GPU. Also the tessellated
+// unit sphere that compares the analytic sphere with triangles
+// (docs/performance.md).
 #pragma once
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace rg {
 
 struct Mesh {
-    std::vector<glm::vec3> vertices;
-    std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
+    std::string name;                 // for messages: "lens.obj" or "glass.gltf: mesh 0 primitive 1"
+    std::vector<glm::vec3> vertices;  // object space
+    std::vector<glm::vec3> normals;   // one per vertex (smooth shading), or empty: the faces' own
+    std::vector<uint32_t> indices;    // three per triangle, counter-clockwise seen from outside
+    // Set by checkMesh:
+    size_t openEdges = 0;    // edges not shared by exactly two triangles of opposite orientation
+    size_t degenerate = 0;   // triangles dropped: zero area, or a repeated vertex
+    glm::vec3 lo{0}, hi{0};  // bounding box of the vertices the triangles use
 };
 
-// An icosahedron subdivided `level` times, vertices on the unit sphere:
-// 20 * 4^level triangles.
+// An icosahedron subdivided `level` times, vertices on the unit sphere (each
+// vertex's normal is its position): 20 * 4^level triangles.
 Mesh icosphere(int level);
+
+// What every loaded mesh goes through (chapter 12). Throws InputError naming
+// `mesh.name` for an index out of range, a NaN or infinite vertex or
+// normal, or no triangle left; drops degenerate triangles (counted in
+// `degenerate`); counts open edges. Edges are matched by vertex position,
+// not index: a file may repeat a vertex where its normals differ.
+void checkMesh(Mesh& mesh);
 
 }  // namespace rg

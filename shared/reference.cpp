@@ -44,11 +44,106 @@ bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, d
     return true;
 }
 
+namespace {
+struct BoxItem {
+    glm::dvec3 lo, hi, centre;
+    uint32_t id;
+};
+
+// Recursive median split: nth_element on the longest axis of the centres.
+void buildTree(std::vector<BoxItem>& items, ReferenceRenderer::Bvh& bvh) {
+    if (items.empty()) return;
+    auto build = [&](auto& self, size_t first, size_t last) -> uint32_t {
+        uint32_t index = uint32_t(bvh.nodes.size());
+        bvh.nodes.push_back({});
+        glm::dvec3 lo(1e300), hi(-1e300), clo(1e300), chi(-1e300);
+        for (size_t k = first; k < last; ++k) {
+            lo = glm::min(lo, items[k].lo), hi = glm::max(hi, items[k].hi);
+            clo = glm::min(clo, items[k].centre), chi = glm::max(chi, items[k].centre);
+        }
+        bvh.nodes[index].lo = lo;
+        bvh.nodes[index].hi = hi;
+        if (last - first <= 4) {
+            bvh.nodes[index].first = uint32_t(bvh.items.size());
+            bvh.nodes[index].count = uint32_t(last - first);
+            for (size_t k = first; k < last; ++k) bvh.items.push_back(items[k].id);
+            return index;
+        }
+        glm::dvec3 extent = chi - clo;
+        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        size_t mid = (first + last) / 2;
+        std::nth_element(items.begin() + long(first), items.begin() + long(mid), items.begin() + long(last),
+                         [axis](const BoxItem& a, const BoxItem& b) { return a.centre[axis] < b.centre[axis]; });
+        self(self, first, mid);  // the left child is index + 1
+        uint32_t right = self(self, mid, last);
+        bvh.nodes[index].right = right;
+        return index;
+    };
+    build(build, 0, items.size());
+}
+
+// Visits the leaves' items whose boxes the ray meets within (tMin, closest()):
+// `closest` is read at every node, so a hit found shortens the rest.
+template <typename Closest, typename Visit>
+void traverseTree(const ReferenceRenderer::Bvh& bvh, const glm::dvec3& origin, const glm::dvec3& direction,
+                  double tMin, Closest closest, Visit visit) {
+    if (bvh.nodes.empty()) return;
+    glm::dvec3 inv = 1.0 / direction;  // +-inf for an axis the ray is parallel to
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const ReferenceRenderer::BvhNode& node = bvh.nodes[stack[--top]];
+        // Slab test against (tMin, the closest hit so far); NaN (0 * inf) leaves an axis out.
+        double t0 = tMin, t1 = closest();
+        for (int a = 0; a < 3; ++a) {
+            double n = (node.lo[a] - origin[a]) * inv[a], f = (node.hi[a] - origin[a]) * inv[a];
+            if (n > f) std::swap(n, f);
+            if (n > t0) t0 = n;
+            if (f < t1) t1 = f;
+        }
+        if (t0 > t1 * (1 + 1e-12) + 1e-300) continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k) visit(bvh.items[k]);
+        } else {
+            stack[top++] = node.right;
+            stack[top++] = uint32_t(&node - bvh.nodes.data()) + 1;  // the left child first
+        }
+    }
+}
+
+// Pads a box by its rounding, so that no part of what it holds is outside.
+void padBox(BoxItem& item) {
+    glm::dvec3 pad = 1e-9 * (item.hi - item.lo + glm::abs(item.lo) + glm::abs(item.hi));
+    item.lo -= pad;
+    item.hi += pad;
+    item.centre = 0.5 * (item.lo + item.hi);
+}
+}  // namespace
+
 ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
+    for (const auto& mesh : scene.meshes) {  // chapter 12: in double, each with its triangles' tree
+        MeshData& m = meshes_.emplace_back();
+        for (const glm::vec3& v : mesh->vertices) m.vertices.push_back(v), m.size = std::max(m.size, maxMagnitude(v));
+        for (const glm::vec3& n : mesh->normals) m.normals.push_back(n);
+        m.indices = mesh->indices;
+        std::vector<BoxItem> items;
+        for (uint32_t t = 0; t < m.indices.size() / 3; ++t) {
+            BoxItem item{glm::dvec3(1e300), glm::dvec3(-1e300), {}, t};
+            for (int c = 0; c < 3; ++c) {
+                item.lo = glm::min(item.lo, m.vertices[m.indices[3 * t + c]]);
+                item.hi = glm::max(item.hi, m.vertices[m.indices[3 * t + c]]);
+            }
+            padBox(item);
+            items.push_back(item);
+        }
+        buildTree(items, m.bvh);
+    }
     for (const auto& o : scene.objects) {
         worldToObject_.push_back(glm::inverse(o.transform));
         const glm::dmat4& m = o.transform;
-        objectSize_.push_back(maxMagnitude(glm::dvec3(m[3])) + largestStretch(m));
+        double extent = o.type == ShapeType::Mesh ? meshes_[o.mesh].size : 1.0;  // of the object-space numbers
+        objectSize_.push_back(maxMagnitude(glm::dvec3(m[3])) + largestStretch(m) * extent);
     }
     buildBvh();
     SkyTexels sky = loadSky(scene);
@@ -67,7 +162,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
     glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
     double t = -1;
-    glm::dvec3 localNormal;
+    glm::dvec3 localNormal, localShading(0);
     bool front = true;
     if (obj.type == ShapeType::Sphere) {
         double t0, t1;
@@ -76,6 +171,16 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
         else if (t1 > tMin && t1 < tMax) { t = t1; front = false; }
         else return;
         localNormal = o + t * d;
+    } else if (obj.type == ShapeType::Mesh) {
+        TriangleHit h = intersectMesh(meshes_[obj.mesh], o, d, tMin, tMax);
+        if (h.t < 0) return;
+        t = h.t;
+        front = h.front;
+        const MeshData& mesh = meshes_[obj.mesh];
+        const uint32_t* v = &mesh.indices[3 * h.triangle];
+        localNormal = glm::cross(mesh.vertices[v[1]] - mesh.vertices[v[0]], mesh.vertices[v[2]] - mesh.vertices[v[0]]);
+        if (!mesh.normals.empty())
+            localShading = h.weights.x * mesh.normals[v[0]] + h.weights.y * mesh.normals[v[1]] + h.weights.z * mesh.normals[v[2]];
     } else {
         if (d.y == 0) return;  // parallel to the plane
         t = -o.y / d.y;
@@ -88,7 +193,10 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     best.t = t;
     best.object = i;
     best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
-    best.frontFace = obj.type == ShapeType::Sphere ? front : glm::dot(best.normal, direction) < 0;
+    best.shading = best.normal;
+    glm::dvec3 shading = glm::transpose(glm::dmat3(inv)) * localShading;
+    if (glm::dot(shading, shading) > 0) best.shading = glm::normalize(shading);
+    best.frontFace = obj.type == ShapeType::Quad ? glm::dot(best.normal, direction) < 0 : front;
     best.error = kRounding * (maxMagnitude(origin) + std::abs(t) * maxMagnitude(direction) + objectSize_[i]);
 }
 
@@ -99,87 +207,76 @@ ReferenceHit ReferenceRenderer::traceLinear(const glm::dvec3& origin, const glm:
     return best;
 }
 
+
 void ReferenceRenderer::buildBvh() {
-    struct Item {
-        glm::dvec3 lo, hi, centre;
-        uint32_t object;
-    };
-    std::vector<Item> items;
+    std::vector<BoxItem> items;
     for (uint32_t i = 0; i < scene_.objects.size(); ++i) {
         const Object& o = scene_.objects[i];
         if (o.hidden) continue;
-        Item item{glm::dvec3(1e300), glm::dvec3(-1e300), {}, i};
-        double y = o.type == ShapeType::Sphere ? 1 : 0;  // the unit shape's box: [-1,1] x [-y,y] x [-1,1]
+        BoxItem item{glm::dvec3(1e300), glm::dvec3(-1e300), {}, i};
+        // The shape's own box: the unit sphere's, the unit quad's, a mesh's.
+        glm::dvec3 lo(-1, o.type == ShapeType::Sphere ? -1 : 0, -1), hi(1, o.type == ShapeType::Sphere ? 1 : 0, 1);
+        if (o.type == ShapeType::Mesh) lo = scene_.meshes[o.mesh]->lo, hi = scene_.meshes[o.mesh]->hi;
         for (int c = 0; c < 8; ++c) {
-            glm::dvec3 corner(c & 1 ? 1 : -1, c & 2 ? y : -y, c & 4 ? 1 : -1);
+            glm::dvec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
             glm::dvec3 w = glm::dvec3(o.transform * glm::dvec4(corner, 1));
             item.lo = glm::min(item.lo, w);
             item.hi = glm::max(item.hi, w);
         }
-        glm::dvec3 pad = 1e-9 * (item.hi - item.lo + glm::abs(item.lo) + glm::abs(item.hi));  // rounding
-        item.lo -= pad;
-        item.hi += pad;
-        item.centre = 0.5 * (item.lo + item.hi);
+        padBox(item);
         items.push_back(item);
     }
-    if (items.empty()) return;
-    // Recursive median split: nth_element on the longest axis of the centres.
-    auto build = [&](auto& self, size_t first, size_t last) -> uint32_t {
-        uint32_t index = uint32_t(bvh_.size());
-        bvh_.push_back({});
-        glm::dvec3 lo(1e300), hi(-1e300), clo(1e300), chi(-1e300);
-        for (size_t k = first; k < last; ++k) {
-            lo = glm::min(lo, items[k].lo), hi = glm::max(hi, items[k].hi);
-            clo = glm::min(clo, items[k].centre), chi = glm::max(chi, items[k].centre);
+    buildTree(items, bvh_);
+}
+
+ReferenceRenderer::TriangleHit ReferenceRenderer::intersectMesh(const MeshData& mesh, const glm::dvec3& o,
+                                                               const glm::dvec3& d, double tMin, double tMax) {
+    // [region watertight]
+    // Woop, Benthin and Wald 2013: shear space so that the ray is the +z
+    // axis through the origin; then a triangle is hit when the origin lies
+    // inside its projection onto the xy plane, decided by the signs of three
+    // 2D edge functions. An edge shared by two triangles gets the same
+    // function (negated) from both, so a ray on the edge is inside one of
+    // them, or both: it never passes between (watertight).
+    int kz = std::abs(d.x) > std::abs(d.y) ? (std::abs(d.x) > std::abs(d.z) ? 0 : 2) : (std::abs(d.y) > std::abs(d.z) ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
+    double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
+    TriangleHit best;
+    best.t = tMax;
+    bool found = false;
+    auto test = [&](uint32_t tri) {
+        glm::dvec3 A = mesh.vertices[mesh.indices[3 * tri]] - o, B = mesh.vertices[mesh.indices[3 * tri + 1]] - o,
+                   C = mesh.vertices[mesh.indices[3 * tri + 2]] - o;
+        double ax = A[kx] - sx * A[kz], ay = A[ky] - sy * A[kz];
+        double bx = B[kx] - sx * B[kz], by = B[ky] - sy * B[kz];
+        double cx = C[kx] - sx * C[kz], cy = C[ky] - sy * C[kz];
+        double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+        if (u == 0 || v == 0 || w == 0) {  // on an edge: decide it exactly enough, in long double
+            long double U = (long double)cx * by - (long double)cy * bx, V = (long double)ax * cy - (long double)ay * cx,
+                        W = (long double)bx * ay - (long double)by * ax;
+            u = double(U), v = double(V), w = double(W);
         }
-        bvh_[index].lo = lo;
-        bvh_[index].hi = hi;
-        if (last - first <= 4) {
-            bvh_[index].first = uint32_t(bvhObjects_.size());
-            bvh_[index].count = uint32_t(last - first);
-            for (size_t k = first; k < last; ++k) bvhObjects_.push_back(items[k].object);
-            return index;
-        }
-        glm::dvec3 extent = chi - clo;
-        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        size_t mid = (first + last) / 2;
-        std::nth_element(items.begin() + long(first), items.begin() + long(mid), items.begin() + long(last),
-                         [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
-        self(self, first, mid);  // the left child is index + 1
-        uint32_t right = self(self, mid, last);
-        bvh_[index].right = right;
-        return index;
+        if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return;  // outside an edge
+        double det = u + v + w;
+        if (det == 0) return;  // seen edge-on
+        double az = sz * A[kz], bz = sz * B[kz], cz = sz * C[kz];
+        double t = (u * az + v * bz + w * cz) / det;
+        if (!(t > tMin && t < best.t)) return;
+        best = {t, tri, glm::dvec3(u, v, w) / det, det > 0};
+        found = true;
     };
-    build(build, 0, items.size());
+    // [end]
+    traverseTree(mesh.bvh, o, d, tMin, [&] { return best.t; }, test);
+    if (!found) best.t = -1;
+    return best;
 }
 
 ReferenceHit ReferenceRenderer::trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
                                       double tMax) const {
     ReferenceHit best;
-    if (bvh_.empty()) return best;
-    glm::dvec3 inv = 1.0 / direction;  // +-inf for an axis the ray is parallel to
-    uint32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const BvhNode& node = bvh_[stack[--top]];
-        // Slab test against (tMin, the closest hit so far); NaN (0 * inf) leaves an axis out.
-        double t0 = tMin, t1 = best.t >= 0 ? best.t : tMax;
-        for (int a = 0; a < 3; ++a) {
-            double n = (node.lo[a] - origin[a]) * inv[a], f = (node.hi[a] - origin[a]) * inv[a];
-            if (n > f) std::swap(n, f);
-            if (n > t0) t0 = n;
-            if (f < t1) t1 = f;
-        }
-        if (t0 > t1 * (1 + 1e-12) + 1e-300) continue;
-        if (node.count > 0) {
-            for (uint32_t k = node.first; k < node.first + node.count; ++k)
-                hitObject(bvhObjects_[k], origin, direction, tMin, tMax, best);
-        } else {
-            stack[top++] = node.right;
-            stack[top++] = uint32_t(&node - bvh_.data()) + 1;  // the left child first
-        }
-    }
+    traverseTree(bvh_, origin, direction, tMin, [&] { return best.t >= 0 ? best.t : tMax; },
+                 [&](uint32_t i) { hitObject(i, origin, direction, tMin, tMax, best); });
     return best;
 }
 
@@ -265,27 +362,54 @@ Split splitAt(const ReferenceSettings& settings, const Material& m, bool enterin
     return s;
 }
 
-// Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing the ray.
-glm::dvec3 refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2) {
+// Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing
+// the ray; false under total internal reflection.
+bool refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2, glm::dvec3& t) {
     double eta = n1 / n2, cosI = -glm::dot(n, d);
-    double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
-    return glm::normalize(eta * d + (eta * cosI - cosT) * n);
+    double k = 1 - eta * eta * (1 - cosI * cosI);
+    if (k < 0) return false;
+    t = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
+    return true;
+}
+
+glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n) { return d - 2 * glm::dot(d, n) * n; }
+
+// Chapter 12's rules for a mesh's two normals (shaders/common/ray_tree.glsl):
+// a direction found with the shading normal ns that lands on the wrong
+// side of the flat triangle (normal n, facing the ray) is found with n.
+glm::dvec3 reflectSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns) {
+    glm::dvec3 r = reflectDirection(d, ns);
+    return glm::dot(r, n) > 0 ? r : reflectDirection(d, n);
+}
+bool refractSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns, double n1, double n2, glm::dvec3& t) {
+    if (refractDirection(d, ns, n1, n2, t) && glm::dot(t, n) < 0) return true;
+    return refractDirection(d, n, n1, n2, t);
+}
+
+// The normals of a hit facing the ray: geometric n, and the shading normal
+// turned with it, or n where it faces away (raygen_common.glsl's facingShading).
+void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dvec3& n, glm::dvec3& ns) {
+    bool front = glm::dot(hit.normal, direction) < 0;
+    n = front ? hit.normal : -hit.normal;
+    ns = front ? hit.shading : -hit.shading;
+    if (glm::dot(ns, direction) >= 0) ns = n;
 }
 }  // namespace
 
 glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
-                                           double error, const glm::dvec3& n, const glm::dvec3& v) const {
+                                           double error, const glm::dvec3& n, const glm::dvec3& ns,
+                                           const glm::dvec3& v) const {
     glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
     if (settings.stage == ReferenceStage::Ambient) return color;
     glm::dvec3 from = secondaryOrigin(p, error, n);
     for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
         glm::dvec3 l = glm::normalize(light.position - p);
-        double ndotl = glm::dot(n, l);
+        double ndotl = glm::dot(ns, l);
         if (ndotl <= 0 || !lightVisible(from, light.position)) continue;
         color += light.intensity * m.kd * ndotl;
         if (settings.stage != ReferenceStage::Diffuse) {
             glm::dvec3 h = glm::normalize(l + v);
-            color += light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(n, h)), m.shininess);
+            color += light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
         }
     }
     return color;
@@ -295,33 +419,36 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
                                        const glm::dvec3& direction, int depth, const glm::dvec3& throughput) const {
     ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);  // depth 0: a camera ray
     if (hit.t < 0) return sky(direction);
-    bool front = glm::dot(hit.normal, direction) < 0;
-    glm::dvec3 n = front ? hit.normal : -hit.normal;  // toward the ray's origin
+    glm::dvec3 n, ns;  // toward the ray's origin: geometric, shading
+    facingNormals(hit, direction, n, ns);
     if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
     const Material& m = scene_.materials[scene_.objects[hit.object].material];
     glm::dvec3 p = origin + hit.t * direction;
     glm::dvec3 v = -direction;
-    if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, hit.error, n, v);
+    if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, hit.error, n, n, v);
 
     // How the light divides at this surface (chapters 08-10).
-    bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
-    Split split = splitAt(settings, m, entering, glm::dot(n, v));
+    bool entering = hit.frontFace;
+    Split split = splitAt(settings, m, entering, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, ns, v);
     if (depth >= settings.maxDepth) return color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
         glm::dvec3 t = throughput * w;
         return settings.stage < ReferenceStage::Refraction || std::max({t.r, t.g, t.b}) >= kMinThroughput;
     };
-    if (reflected > 0 && strongEnough(reflected)) {
-        glm::dvec3 r = direction - 2 * glm::dot(direction, n) * n;
-        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r, depth + 1, throughput * reflected);
-    }
+    glm::dvec3 t;
     if (refracted > 0 && strongEnough(refracted)) {
-        glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
-        color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, depth + 1, throughput * refracted);
+        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+            color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, depth + 1, throughput * refracted);
+        else
+            reflected += refracted;  // a mesh's flat triangle reflects it all
+    }
+    if (reflected > 0 && strongEnough(reflected)) {
+        glm::dvec3 r = reflectSides(direction, n, ns);
+        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r, depth + 1, throughput * reflected);
     }
     return color;
 }
@@ -339,21 +466,24 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     ReferenceHit hit = trace(origin, direction, eyeTmin(), 1e300);
     if (hit.t < 0) return sky(direction);
     const Material& m = scene_.materials[scene_.objects[hit.object].material];
-    bool front = glm::dot(hit.normal, direction) < 0;
-    glm::dvec3 n = front ? hit.normal : -hit.normal;
+    glm::dvec3 n, ns;
+    facingNormals(hit, direction, n, ns);
     if (m.roughness <= 0 || settings.maxDepth == 0) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
     glm::dvec3 p = origin + hit.t * direction, v = -direction;
-    bool entering = scene_.objects[hit.object].type == ShapeType::Sphere ? hit.frontFace : front;
-    Split split = splitAt(settings, m, entering, glm::dot(n, v));
+    bool entering = hit.frontFace;
+    Split split = splitAt(settings, m, entering, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, v);
+    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, ns, v);
     if (refracted >= 1e-4) {
-        glm::dvec3 t = refractDirection(direction, n, split.n1, split.n2);
-        color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, 1, glm::dvec3(refracted));
+        glm::dvec3 t;
+        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+            color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, 1, glm::dvec3(refracted));
+        else
+            reflected += refracted;
     }
     if (reflected < 1e-4) return color;
-    glm::dvec3 mirror = direction - 2 * glm::dot(direction, n) * n;
+    glm::dvec3 mirror = reflectSides(direction, n, ns);
     // A basis around the mirror direction, and the cone of half-angle roughness * pi/2.
     glm::dvec3 helper = std::abs(mirror.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     glm::dvec3 t1 = glm::normalize(glm::cross(helper, mirror)), t2 = glm::cross(mirror, t1);

@@ -24,6 +24,7 @@ struct ReferenceSettings {
 struct ReferenceHit {
     double t = -1;          // < 0: miss
     glm::dvec3 normal{0};   // world, unit, out of the shape
+    glm::dvec3 shading{0};  // world, unit shading normal on the side of `normal` (a mesh's interpolated one)
     uint32_t object = 0;
     bool frontFace = true;
     double error = 0;       // how far origin + t * direction may lie from the surface (its rounding)
@@ -49,8 +50,9 @@ public:
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
                         int depth, const glm::dvec3& throughput) const;
+    // n: the geometric normal (shadow rays leave along it); ns: the shading normal.
     glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p, double error,
-                            const glm::dvec3& n, const glm::dvec3& v) const;
+                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v) const;
     // Renders every pixel on all cores. For chapter 11 each pixel's alpha
     // holds the standard error of its estimate (the reference's own error).
     FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
@@ -71,15 +73,41 @@ private:
                    ReferenceHit& best) const;
     void buildBvh();
 
+public:
     // The reference's own acceleration (thesis 2.2.1 on the CPU): a binary
-    // tree of boxes, median splits on the longest axis, up to 4 objects a leaf.
+    // tree of boxes, median splits on the longest axis, up to 4 items a leaf;
+    // one over the objects, and one per mesh over its triangles (chapter 12).
     struct BvhNode {
         glm::dvec3 lo, hi;
-        uint32_t first = 0, count = 0;  // a leaf: bvhObjects_[first, first + count)
+        uint32_t first = 0, count = 0;  // a leaf: items[first, first + count)
         uint32_t right = 0;             // an inner node: children at index + 1 and `right`
     };
-    std::vector<BvhNode> bvh_;
-    std::vector<uint32_t> bvhObjects_;
+    struct Bvh {
+        std::vector<BvhNode> nodes;
+        std::vector<uint32_t> items;
+    };
+    // A mesh in double, with its triangles' tree (object space).
+    struct MeshData {
+        std::vector<glm::dvec3> vertices, normals;
+        std::vector<uint32_t> indices;
+        Bvh bvh;
+        double size = 0;  // the largest vertex coordinate's magnitude
+    };
+    struct TriangleHit {
+        double t = -1;
+        uint32_t triangle = 0;
+        glm::dvec3 weights{0};  // barycentric weights of the triangle's three vertices
+        bool front = true;      // the winding: counter-clockwise seen from the ray's origin
+    };
+    // Watertight ray-triangle test (Woop, Benthin and Wald 2013, as PBRT-v4):
+    // closest hit in (tMin, tMax) over the mesh's tree, in object space.
+    static TriangleHit intersectMesh(const MeshData& mesh, const glm::dvec3& o, const glm::dvec3& d, double tMin,
+                                     double tMax);
+    const MeshData& meshData(uint32_t mesh) const { return meshes_[mesh]; }
+
+private:
+    Bvh bvh_;
+    std::vector<MeshData> meshes_;
 
     const Scene& scene_;
     std::vector<glm::dmat4> worldToObject_;

@@ -11,6 +11,8 @@
 #include "two_launches.h"
 #include "viewer.h"
 
+#include <chrono>
+
 namespace rg {
 
 int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
@@ -27,7 +29,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     };
     if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
     return runChapter(opts, [&] {
-        Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath("default") : opts.scene));
+        auto loadStart = std::chrono::steady_clock::now();
+        Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath(chapter.scene) : opts.scene));
+        double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
+        if (!chapter.meshes) refuseMeshes(scene);
         App app;
         initApp(app, opts, chapter.title);
         // What grows with the image: the ray counts (4 bytes a pixel) and
@@ -42,15 +47,15 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                   .sphereMeshLevel = settings.sphereMesh});
 
         // [region shaders]
-        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, sphere mesh
+        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, mesh
         // (primary rays), then the same three for shadow rays: no closest hit;
         // the sphere still needs its intersection shader to be found at all.
         RtShaders shaders{
-            .raygen = chapter.name + "/raygen.rgen",
+            .raygen = (chapter.raygenFolder.empty() ? chapter.name : chapter.raygenFolder) + "/raygen.rgen",
             .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
             .hitGroups = {{.closestHit = "common/quad.rchit"},
                           {.closestHit = "common/sphere.rchit", .intersection = "common/sphere.rint"},
-                          {.closestHit = "common/mesh_sphere.rchit"},
+                          {.closestHit = "common/mesh.rchit"},
                           {},
                           {.intersection = "common/sphere.rint"},
                           {}},
@@ -87,7 +92,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
-        nlohmann::json launches = {{"launches", two.lastLaunches}};  // the last frame's
+        nlohmann::json launches = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs}};  // the last frame's
         if (canTwo) launches["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},
                                                         {"queue_capacity", two.capacity}};
         finishRtRun(app, opts, scene, rt, target, times, reference, launches);

@@ -27,6 +27,9 @@ struct RtChapter {
     std::string description;  // for --help
     std::string title;        // the window's title
     ReferenceStage stage;     // what the CPU reference renders
+    std::string raygenFolder; // the ray generation shader's folder if not `name`'s (chapter 12 uses 11's)
+    bool meshes = false;      // chapter 12 on: scenes may hold triangle meshes
+    std::string scene = "default";  // the scene without --scene: bin/assets/scenes/<scene>.json
     // Declares the chapter's own parameters (chapter 06: --fixed-epsilon,
     // ...): each is a command-line option and a control in the overlay.
     std::function<void(Params&, RtChapterSettings&)> options;

@@ -28,4 +28,19 @@ inline void addLaunchesOption(Params& params, RtChapterSettings& s) {
                   {"auto", "one", "two"});
 }
 
+// Chapter 11's rough reflections and progressive accumulation (chapter 12
+// keeps them): --samples, --pattern, --no-accumulate, --reference-samples.
+inline void addRoughOptions(Params& params, RtChapterSettings& s) {
+    s.samplesPerHit = 25;  // the thesis's figure
+    s.pattern = 3;  // sobol
+    s.accumulate = true;
+    s.referenceSamples = 1024;
+    params.integer("--samples", s.samplesPerHit, "Reflection rays per rough hit and frame", 1, 1024);
+    params.choice("--pattern", s.pattern, "Sample pattern", {"uniform", "stratified", "hammersley", "sobol"});
+    params.toggle("--no-accumulate", s.accumulate, "Every frame on its own (for timing single frames)", true);
+    params.integer("--reference-samples", s.referenceSamples,
+                   "Samples per rough hit in the CPU reference (a square number)", 4, 65536)
+        .live = false;
+}
+
 }  // namespace rg

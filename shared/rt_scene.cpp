@@ -94,6 +94,11 @@ void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky, si
                          mebibytes(limit) + "); at most " +
                          std::to_string(uint64_t(limit / (2 * sizeof(gpu::GpuObject)))) + " spheres fit");
     const auto& as = gpu.physical.accelerationStructure;
+    for (const auto& mesh : scene.meshes)
+        if (mesh->indices.size() / 3 > as.maxPrimitiveCount)
+            throw InputError(scene.path + ": " + mesh->name + ": " + std::to_string(mesh->indices.size() / 3) +
+                             " triangles, more than this device's maxPrimitiveCount (" +
+                             std::to_string(as.maxPrimitiveCount) + ")");
     if (instanced + 1 > as.maxInstanceCount)
         throw InputError(scene.path + ": objects: " + std::to_string(instanced) +
                          " instances, more than this device's maxInstanceCount (" +
@@ -110,7 +115,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
-    rt.shapes = buildUnitShapes(gpu, deletion, layout.sphereMeshLevel);
+    rt.shapes = buildUnitShapes(gpu, deletion, layout.sphereMeshLevel, &scene, layout.fileOrder);
     // Chapter 03: which objects become boxes of the sphere group and which
     // instances, each list in the order its structure is built from.
     bool grouping = layout.groupSpheres && layout.sphereMeshLevel == 0;  // a sphere mesh is instanced
@@ -141,9 +146,12 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
 
     std::vector<gpu::GpuObject> objects;
     const glm::vec4 unitSphere(0, 0, 0, 1);  // in its instance's object space
-    for (const auto& o : scene.objects)
-        objects.push_back({unitSphere, o.type == ShapeType::Sphere ? SHAPE_SPHERE : SHAPE_QUAD, o.material,
-                           worldRadius(o), 0});
+    for (const auto& o : scene.objects) {
+        bool sphereMesh = o.type == ShapeType::Sphere && rt.shapes.sphereMesh >= 0;
+        uint32_t shape = o.type == ShapeType::Sphere ? SHAPE_SPHERE : o.type == ShapeType::Quad ? SHAPE_QUAD : SHAPE_MESH;
+        objects.push_back({unitSphere, sphereMesh ? SHAPE_MESH : shape, o.material, worldRadius(o),
+                           sphereMesh ? uint32_t(rt.shapes.sphereMesh) : o.mesh});
+    }
     for (uint32_t i : rt.group.objects)  // the group's boxes, in their order: the real spheres
         objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE, scene.objects[i].material,
                            worldRadius(scene.objects[i]), 0});
@@ -156,6 +164,13 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     rt.lights = storage(gpu, deletion, lights);
     rt.sky = storage(gpu, deletion, sky.rgba);
     rt.rayCount = createRayCounts(gpu, deletion, rt.width, rt.height);
+    // [region mesh_table]
+    auto address = [](const Buffer& b) { return glm::uvec2(uint32_t(b.address), uint32_t(b.address >> 32)); };
+    std::vector<gpu::GpuMesh> meshes;  // chapter 12: one entry per mesh, its buffers by address
+    for (const MeshBlas& m : rt.shapes.meshes)
+        meshes.push_back({address(m.vertices), address(m.normals), address(m.indices), {0, 0}});
+    rt.meshes = storage(gpu, deletion, meshes);  // without meshes, one unused entry: a binding needs a buffer
+    // [end]
 
     const VkShaderStageFlags rt_stages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
                                          VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
@@ -168,8 +183,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         {RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
         {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
         {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
-        {RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
-        {RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+        {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
     });
     // [region tlas_descriptor]
     VkDescriptorSet set = rt.descriptors.set;
@@ -182,11 +196,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     writeBuffer(gpu, set, RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.lights);
     writeBuffer(gpu, set, RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.sky);
     writeBuffer(gpu, set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
-    // Without a sphere mesh the bindings still need a buffer: a small unused one.
-    Buffer meshVertices = rt.shapes.meshVertices, meshIndices = rt.shapes.meshIndices;
-    if (!meshVertices.handle) meshVertices = meshIndices = storage(gpu, deletion, std::vector<float>(4, 0.0f));
-    writeBuffer(gpu, set, RT_BINDING_MESH_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshVertices);
-    writeBuffer(gpu, set, RT_BINDING_MESH_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, meshIndices);
+    writeBuffer(gpu, set, RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.meshes);
     return rt;
 }
 

@@ -29,6 +29,7 @@ struct RtScene {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     Tlas tlas;
     Buffer camera, objects, materials, lights, sky, rayCount;
+    Buffer meshes;  // gpu::GpuMesh per mesh (chapter 12)
     DescriptorSet descriptors;
     uint32_t width = 0, height = 0;
 };

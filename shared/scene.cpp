@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include "files.h"
+#include "mesh_file.h"
 #include "progress.h"
 #include "resources.h"
 
@@ -14,7 +15,9 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -227,9 +230,10 @@ double eyeTmin(const Scene& s) {
         double size = glm::length(glm::dvec3(m[3]) - s.camera.position) + scale;
         glm::dvec3 q = glm::dvec3(glm::inverse(m) * glm::dvec4(s.camera.position, 1.0));  // the eye, in object space
         double rounding = kRounding * size / scale;                                       // in object units
-        bool onSurface = o.type == ShapeType::Sphere
-                             ? std::abs(glm::length(q) - 1.0) <= rounding
-                             : std::abs(q.y) <= rounding && std::abs(q.x) <= 1 + rounding && std::abs(q.z) <= 1 + rounding;
+        bool onSurface = o.type == ShapeType::Sphere ? std::abs(glm::length(q) - 1.0) <= rounding
+                         : o.type == ShapeType::Quad
+                             ? std::abs(q.y) <= rounding && std::abs(q.x) <= 1 + rounding && std::abs(q.z) <= 1 + rounding
+                             : false;  // a mesh: an eye on one of its triangles is not looked for
         if (onSurface) tMin = std::max(tMin, kReach * size);
     }
     return tMin;
@@ -270,6 +274,108 @@ void readSphereList(const Reader& r, const json& o, const std::string& key, uint
         sphere.transform = sphereTransform(sphere.center, sphere.radius);
     }
 }
+
+// A file a scene names: relative to the scene file first, then to
+// bin/assets/; it must be a regular file.
+std::string findInput(const Reader& r, const std::string& scenePath, const std::filesystem::path& name,
+                      const std::string& key) {
+    std::filesystem::path besideScene = std::filesystem::path(scenePath).parent_path() / name;
+    std::filesystem::path inAssets = executableDir() / "assets" / name;
+    std::error_code error;  // a loop of links: no exception, the check below names it
+    std::string found;
+    if (std::filesystem::symlink_status(besideScene, error).type() != std::filesystem::file_type::not_found)
+        found = besideScene.string();
+    else if (std::filesystem::symlink_status(inAssets, error).type() != std::filesystem::file_type::not_found)
+        found = inAssets.string();
+    else
+        r.fail(key, "no such file: " + name.string());
+    requireRegularFile(found, scenePath + ": " + key);
+    return found;
+}
+
+// [region mesh_material]
+// A glTF material in RayGlass's terms (docs/scene-format.md): the base
+// colour is diffuse where the surface is neither metal nor glass; metal is
+// a tinted-free mirror of that strength; the highlight narrows as the
+// roughness falls (Blinn-Phong's exponent 2 / alpha^2 - 2 for GGX's alpha =
+// roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2.
+Material materialFromFile(const FileMaterial& f) {
+    Material m;
+    m.name = f.name;
+    double dielectric = (1 - f.metallic) * (1 - f.transmission);
+    m.kd = f.baseColor * dielectric;
+    m.ka = m.kd;
+    double alpha = std::max(f.roughness * f.roughness, 1e-3);
+    m.shininess = std::min(1e6, std::max(1.0, 2 / (alpha * alpha) - 2));
+    m.ks = glm::dvec3(0.04 * (1 - f.roughness));
+    m.reflectivity = f.metallic * (1 - f.transmission);
+    m.transmission = f.transmission;
+    m.ior = f.ior;
+    m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
+    m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;  // rough reflection only for metal (ch 11)
+    return m;
+}
+// [end]
+
+// Mesh objects (chapter 12): each file is read once, its meshes go into
+// Scene::meshes once, and every placement adds one object per part.
+class MeshFiles {
+public:
+    MeshFiles(const Reader& r, const std::string& scenePath, Scene& scene) : r_(r), path_(scenePath), scene_(scene) {}
+
+    void place(const std::string& name, const std::string& key, const glm::dmat4& transform, bool moving,
+               std::optional<uint32_t> material) {
+        std::string file = findInput(r_, path_, name, key + ".file");
+        auto it = loaded_.find(file);
+        if (it == loaded_.end()) it = loaded_.emplace(file, load(file, key)).first;
+        const Loaded& l = it->second;
+        for (const MeshPart& part : l.parts) {
+            if (!material && part.material < 0)
+                r_.fail(key + ".material", "missing: " + name + " names no material for its mesh");
+            Object o{.type = ShapeType::Mesh, .material = material ? *material : l.materials[part.material],
+                     .moving = moving, .transform = transform * part.transform, .mesh = l.firstMesh + part.mesh};
+            const Mesh& mesh = *scene_.meshes[o.mesh];
+            if (scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0)
+                std::fprintf(stderr, "%s: %s: warning: %s is transmissive but not closed: %zu open edges "
+                             "(glass needs a closed surface)\n", path_.c_str(), key.c_str(), mesh.name.c_str(), mesh.openEdges);
+            scene_.objects.push_back(o);
+        }
+    }
+
+private:
+    struct Loaded {
+        uint32_t firstMesh = 0;
+        std::vector<uint32_t> materials;  // the file's materials in the scene's list
+        std::vector<MeshPart> parts;
+    };
+    Loaded load(const std::string& file, const std::string& key) {
+        MeshFile mf;
+        try {
+            mf = loadMeshFile(file);
+        } catch (const InputError& e) {
+            throw InputError(path_ + ": " + key + ".file: " + e.what());
+        }
+        Loaded l{.firstMesh = uint32_t(scene_.meshes.size()), .parts = mf.parts};
+        for (const FileMaterial& f : mf.materials) {
+            l.materials.push_back(uint32_t(scene_.materials.size()));
+            scene_.materials.push_back(materialFromFile(f));
+            scene_.materials.back().name = std::filesystem::path(file).filename().string() + ": " + f.name;
+        }
+        for (Mesh& m : mf.meshes) {
+            if (m.degenerate > 0)
+                std::fprintf(stderr, "%s: %s: dropped %zu degenerate triangles\n", path_.c_str(), m.name.c_str(), m.degenerate);
+            scene_.meshes.push_back(std::make_shared<const Mesh>(std::move(m)));
+        }
+        if (mf.skippedPrimitives > 0)
+            std::fprintf(stderr, "%s: %s: skipped %zu primitives that are points or lines\n", path_.c_str(), file.c_str(),
+                         mf.skippedPrimitives);
+        return l;
+    }
+    const Reader& r_;
+    const std::string& path_;
+    Scene& scene_;
+    std::map<std::string, Loaded> loaded_;
+};
 
 }  // namespace
 
@@ -317,18 +423,7 @@ Scene loadScene(const std::string& path) {
         const json& k = j["sky"];
         r.onlyKeys(k, "sky", {"image", "top", "horizon", "bottom"});
         if (k.contains("image")) {
-            std::filesystem::path image = r.string(k["image"], "sky.image");
-            // Relative to the scene file first, then to bin/assets/.
-            std::filesystem::path besideScene = std::filesystem::path(path).parent_path() / image;
-            std::filesystem::path inAssets = executableDir() / "assets" / image;
-            std::error_code error;  // a loop of links: no exception, the check below names it
-            if (std::filesystem::symlink_status(besideScene, error).type() != std::filesystem::file_type::not_found)
-                s.sky.image = besideScene.string();
-            else if (std::filesystem::symlink_status(inAssets, error).type() != std::filesystem::file_type::not_found)
-                s.sky.image = inAssets.string();
-            else
-                r.fail("sky.image", "no such file: " + image.string());
-            requireRegularFile(s.sky.image, path + ": sky.image");
+            s.sky.image = findInput(r, path, r.string(k["image"], "sky.image"), "sky.image");
         }
         if (k.contains("top")) s.sky.top = r.vec3(k["top"], "sky.top", 0, kHuge);
         if (k.contains("horizon")) s.sky.horizon = r.vec3(k["horizon"], "sky.horizon", 0, kHuge);
@@ -369,6 +464,7 @@ Scene loadScene(const std::string& path) {
         if (m.contains("roughness")) mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
         s.materials.push_back(mat);
     }
+    MeshFiles meshFiles(r, path, s);
     auto materialIndex = [&](const json& v, const std::string& key) -> uint32_t {
         std::string name = r.string(v, key);
         for (size_t i = 0; i < s.materials.size(); ++i)
@@ -389,11 +485,11 @@ Scene loadScene(const std::string& path) {
         if (i % 4096 == 0) progress.update(i);
         const json& o = j["objects"][i];
         std::string key = "objects[" + std::to_string(i) + "]";
-        if (!o.is_object() || !o.contains("type")) r.fail(key + ".type", "missing (sphere, quad or spheres)");
+        if (!o.is_object() || !o.contains("type")) r.fail(key + ".type", "missing (sphere, quad, spheres or mesh)");
         std::string type = r.string(o["type"], key + ".type");
         Object obj;
-        if (!o.contains("material")) r.fail(key + ".material", "missing");
-        obj.material = materialIndex(o["material"], key + ".material");
+        if (!o.contains("material") && type != "mesh") r.fail(key + ".material", "missing");
+        if (type != "mesh") obj.material = materialIndex(o["material"], key + ".material");
         if (type == "sphere") {
             r.onlyKeys(o, key, {"type", "material", "center", "radius", "transform", "moving"});
             obj.type = ShapeType::Sphere;
@@ -415,12 +511,21 @@ Scene loadScene(const std::string& path) {
             // normal, z -> -v (a right-handed frame, so no mirroring).
             obj.transform = glm::dmat4(glm::dvec4(obj.u, 0), glm::dvec4(glm::normalize(n), 0), glm::dvec4(-obj.v, 0),
                                        glm::dvec4(obj.center, 1));
+        } else if (type == "mesh") {  // chapter 12: every part of the file, as objects
+            r.onlyKeys(o, key, {"type", "material", "file", "transform", "moving"});
+            if (!o.contains("file")) r.fail(key + ".file", "missing (a .gltf, .glb or .obj file)");
+            glm::dmat4 place = o.contains("transform") ? readTransform(r, o["transform"], key + ".transform") : glm::dmat4(1.0);
+            bool moving = o.contains("moving") && r.boolean(o["moving"], key + ".moving");
+            std::optional<uint32_t> material;
+            if (o.contains("material")) material = materialIndex(o["material"], key + ".material");
+            meshFiles.place(r.string(o["file"], key + ".file"), key, place, moving, material);
+            continue;
         } else if (type == "spheres") {  // the compact form for big scenes: one material, many spheres
             r.onlyKeys(o, key, {"type", "material", "data"});
             readSphereList(r, o, key, obj.material, s.objects);
             continue;
         } else {
-            r.fail(key + ".type", "\"" + type + "\" is not a shape (sphere, quad or spheres)");
+            r.fail(key + ".type", "\"" + type + "\" is not a shape (sphere, quad, spheres or mesh)");
         }
         if (o.contains("transform")) obj.transform = readTransform(r, o["transform"], key + ".transform") * obj.transform;
         if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
@@ -438,6 +543,7 @@ Scene loadScene(const std::string& path) {
     auto compare = [&](uint32_t a, uint32_t b) {
         const Object &oa = s.objects[a], &ob = s.objects[b];
         if (oa.type != ob.type) return oa.type < ob.type ? -1 : 1;
+        if (oa.mesh != ob.mesh) return oa.mesh < ob.mesh ? -1 : 1;  // 0 for spheres and quads
         const double *ta = &oa.transform[0][0], *tb = &ob.transform[0][0];
         for (int k = 0; k < 16; ++k) {
             int i = (k + 12) % 16;  // column 3 (the translation), then columns 0, 1, 2
@@ -470,6 +576,13 @@ Scene loadScene(const std::string& path) {
     if (j.contains("scale")) r.number(j["scale"], "scale", 1e-12, kHuge);
     s.eyeTmin = eyeTmin(s);
     return s;
+}
+
+void refuseMeshes(const Scene& scene) {
+    for (const Object& o : scene.objects)
+        if (o.type == ShapeType::Mesh)
+            throw InputError(scene.path + ": " + scene.meshes[o.mesh]->name +
+                             ": triangle meshes come in chapter 12; run 12_triangle_meshes");
 }
 
 // [region camera_space]

@@ -3,9 +3,12 @@
 // key. Everything is double precision here; the GPU gets floats from it and
 // the CPU reference renderer uses it as it is.
 #pragma once
+#include "mesh.h"
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,10 +45,11 @@ struct Material {
     double roughness = 0;          // lobe width for rough reflection (ch 11)
 };
 
-enum class ShapeType { Sphere, Quad };
+enum class ShapeType { Sphere, Quad, Mesh };
 
 // Every object becomes one instance of a unit shape (a sphere of radius 1 at
-// the origin, or the quad [-1,1] x {0} x [-1,1]) with a world transform.
+// the origin, or the quad [-1,1] x {0} x [-1,1]) or of a mesh (chapter 12)
+// with a world transform.
 struct Object {
     ShapeType type = ShapeType::Sphere;
     uint32_t material = 0;
@@ -56,6 +60,7 @@ struct Object {
     glm::dvec3 center{0};
     double radius = 1;       // spheres
     glm::dvec3 u{1, 0, 0}, v{0, 0, 1};  // quads: half-edges, the quad is center +- u +- v
+    uint32_t mesh = 0;       // meshes: index into Scene::meshes
 };
 
 struct Scene {
@@ -66,6 +71,8 @@ struct Scene {
     std::vector<PointLight> lights;
     std::vector<Material> materials;
     std::vector<Object> objects;
+    // Chapter 12: each mesh once, however many objects place it (one BLAS each).
+    std::vector<std::shared_ptr<const Mesh>> meshes;
     // Camera rays ignore hits closer to the eye than this: 0 unless the eye
     // lies on a surface (eyeTmin in scene.cpp; docs/scene-format.md's rule 1).
     double eyeTmin = 0;
@@ -81,6 +88,10 @@ double largestStretch(const glm::dmat4& transform);
 // the file and the key for a missing file, bad JSON, an unknown key, a
 // missing value or one out of range.
 Scene loadScene(const std::string& path);
+
+// Chapters before 12 draw spheres and quads only: throws InputError naming
+// the first mesh object and chapter 12.
+void refuseMeshes(const Scene& scene);
 
 // The rendering space of the ray tracing chapters (04 on), as PBRT-v4 does:
 // the whole scene translated, in double precision, so that the camera sits

@@ -112,13 +112,16 @@ nlohmann::json expectMatchesReference(const std::string& exe, const std::string&
     return report;
 }
 
-std::vector<std::string> hardCaseScenes() {
+static std::vector<std::string> scenesIn(const std::string& folder) {
     std::vector<std::string> scenes;
-    for (const auto& entry : std::filesystem::directory_iterator(RG_SOURCE_DIR "/tests/scenes"))
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
         if (entry.path().extension() == ".json") scenes.push_back(entry.path().string());
     std::sort(scenes.begin(), scenes.end());
     return scenes;
 }
+
+std::vector<std::string> hardCaseScenes() { return scenesIn(RG_SOURCE_DIR "/tests/scenes"); }
+std::vector<std::string> meshScenes() { return scenesIn(RG_SOURCE_DIR "/tests/mesh_scenes"); }
 
 bool haveDisplay() {
     if (std::getenv("DISPLAY")) return true;

@@ -52,5 +52,7 @@ nlohmann::json expectMatchesReference(const std::string& exe, const std::string&
 
 // The hard-case scenes under tests/scenes/.
 std::vector<std::string> hardCaseScenes();
+// Chapter 12's mesh scenes under tests/mesh_scenes/ (the chapters before refuse them).
+std::vector<std::string> meshScenes();
 
 }  // namespace rgtest

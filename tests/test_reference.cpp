@@ -1,4 +1,4 @@
-// Compiled once per shading chapter (05-11; tests/CMakeLists.txt sets
+// Compiled once per shading chapter (05-12; tests/CMakeLists.txt sets
 // RG_THIS_EXE and RG_THIS_NAME): the chapter against the CPU double-precision
 // reference on its default scene and on every hard case under tests/scenes/
 // (scales 1e-3 and 1e5, the scene moved 1e4-1e6 from the origin, a light on
@@ -6,7 +6,8 @@
 // spheres, the eye on a sphere, a camera inside a sphere or inside glass
 // (where total internal reflection happens), glass at grazing incidence,
 // touching glass spheres, a long glass ellipsoid, the depth limit, 1,000
-// spheres), with validation on and no NaN anywhere; and its window under Xvfb.
+// spheres), with validation on and no NaN anywhere; chapter 12 also on the
+// mesh scenes under tests/mesh_scenes/; and its window under Xvfb.
 #include "harness.h"
 
 #include <cctype>
@@ -36,6 +37,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, HardCases, ::testing::ValuesIn(rgtest::hardCase
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;
                          });
+
+#ifdef RG_MESH_SCENES
+// Chapter 12 on: the mesh hard cases (thin shells, a mesh inside a sphere,
+// edges seen edge-on, one mesh placed 1,000 times).
+INSTANTIATE_TEST_SUITE_P(MeshScenes, HardCases, ::testing::ValuesIn(rgtest::meshScenes()),
+                         [](const auto& info) { return std::filesystem::path(info.param).stem().string(); });
+#endif
 
 TEST(Windowed, RendersUnderXvfb) {
     rgtest::expectCleanWindowedRun(RG_THIS_EXE, RG_THIS_NAME "_window", 10);

@@ -2,7 +2,7 @@
 # The sanitizer pass of the test suite (tools/test.sh runs it). Builds the
 # chapters and the CPU-only tests with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-DRG_SANITIZE=ON) in their own folder, then
-# runs the unit tests, the scene fuzz cases through the loader, and every
+# runs the unit tests, the scene and mesh fuzz cases through the loaders, and every
 # chapter headless at a small size with the validation layer on. Any
 # sanitizer report, validation message or non-zero exit fails the pass.
 # Leaks inside libraries that are not RayGlass's are suppressed by
@@ -14,8 +14,8 @@ build=build-asan
 [ "${1:-}" = "--build" ] && build="$2"
 
 chapters=(01_vulkan_setup 02_synchronization 03_acceleration_structures 04_raygen_miss 05_ambient 06_diffuse
-          07_specular 08_reflection 09_fresnel 10_refraction 11_rough)
-units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults)
+          07_specular 08_reflection 09_fresnel 10_refraction 11_rough 12_triangle_meshes)
+units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults test_12_triangle_meshes)
 echo "== sanitizer build in $build (ASan + UBSan, -O1)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON >/dev/null ||
   exit 1
@@ -50,6 +50,10 @@ check() {  # name, command...
 }
 for t in test_sphere_intersection test_sbt test_fresnel test_sampling; do check "$t" "$build/bin/$t"; done
 check test_scene_fuzz env RG_FUZZ_STRIDE=3 RG_FUZZ_SECONDS=60 "$build/bin/test_scene_fuzz" --gtest_filter='*Loader*'
+# Chapter 12's mesh loader and reference (the fuzzed mesh files, the checks,
+# the watertight and optics tests); its GPU runs are the chapter's line below.
+check test_12_meshes "$build/bin/test_12_triangle_meshes" \
+  --gtest_filter='Meshes.Fuzzed*:Meshes.Broken*:Meshes.Open*:Meshes.Degenerate*:Meshes.Gltf*:Meshes.Generated*:Optics.*'
 # The fault suite (signals, a full disk, special files, limits): its chapters
 # run sanitized too, and any report breaks their one line of stderr. Not its
 # window test: with the layer preloaded GLFW finds no Vulkan surface support

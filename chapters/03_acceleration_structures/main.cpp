@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
         return *exit;
     return rg::runChapter(opts, [&] {
         rg::Scene scene = rg::loadScene(opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene);
+        rg::refuseMeshes(scene);  // spheres and quads only, until chapter 12
         rg::App app;
         rg::initApp(app, opts, "RayGlass 03: acceleration structures");
         rg::Gpu& gpu = app.gpu;

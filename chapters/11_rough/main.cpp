@@ -14,16 +14,7 @@ int main(int argc, char** argv) {
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {
             rg::addDepthOption(params, s, 4);
             rg::addFresnelOption(params, s);
-            s.samplesPerHit = 25;  // the thesis's figure
-            s.pattern = 3;  // sobol
-            s.accumulate = true;
-            s.referenceSamples = 1024;
-            params.integer("--samples", s.samplesPerHit, "Reflection rays per rough hit and frame", 1, 1024);
-            params.choice("--pattern", s.pattern, "Sample pattern", {"uniform", "stratified", "hammersley", "sobol"});
-            params.toggle("--no-accumulate", s.accumulate, "Every frame on its own (for timing single frames)", true);
-            params.integer("--reference-samples", s.referenceSamples,
-                           "Samples per rough hit in the CPU reference (a square number)", 4, 65536)
-                .live = false;
+            rg::addRoughOptions(params, s);
         },
     });
 }

@@ -10,6 +10,8 @@ struct HitPayload {
     uint material;
     vec3 position;   // world-space hit point: the ray's point at t
     uint frontFace;  // 1: the ray hit the outside (front) of the surface
+    vec3 shading;    // world-space unit shading normal, on the side of `normal`: a mesh's
+                     // interpolated vertex normal (chapter 12), else `normal` itself
     float radius;    // world-space radius of the sphere hit, 0 for other shapes (chapter 10)
     float error;     // how far `position` may be from the surface (hit_error.glsl, chapter 06)
 };

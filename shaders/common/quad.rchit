@@ -19,6 +19,7 @@ void main() {
                              gl_ObjectToWorldEXT, payload.normal);
     payload.material = objects[gl_InstanceCustomIndexEXT].material;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
+    payload.shading = payload.normal;  // flat or analytic: one normal
     payload.radius = 0.0;  // a quad has no inside
 }
 // [end]

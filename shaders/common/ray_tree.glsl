@@ -29,6 +29,29 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
 
 float maxComponent(vec3 v) { return max(v.r, max(v.g, v.b)); }
 
+// [region sides]
+// Chapter 12: a mesh shades with its interpolated normal ns, but its surface
+// is the flat triangle with normal n. A direction found with ns can end up
+// on the wrong side of the triangle: a reflection into the surface, a
+// refraction back out of it. Traced as it is, the first would start inside
+// the glass as if it had entered, the second outside as if it had left,
+// and the medium stack of the path would be wrong from there on. So such a
+// direction is found again with n, which always puts it on its own side.
+// (For spheres and quads ns = n, and neither test ever fails.)
+vec3 reflectedDirection(vec3 d, vec3 n, vec3 ns) {
+    vec3 r = reflect(d, ns);
+    return dot(r, n) > 0.0 ? r : reflect(d, n);
+}
+// vec3(0) when even the flat surface reflects totally: the caller gives
+// that share to the reflection.
+vec3 refractedDirection(vec3 d, vec3 n, vec3 ns, float eta) {
+    vec3 t = refract(d, ns, eta);
+    if (dot(t, n) < 0.0) return normalize(t);
+    t = refract(d, n, eta);
+    return t == vec3(0.0) ? t : normalize(t);
+}
+// [end]
+
 // [region inside_reach]
 // A ray that starts inside a sphere of radius r leaves it within a diameter
 // (plus its origin's offset from the hit point p and p's rounding): its
@@ -72,26 +95,28 @@ void growBranch() {
     }
     GpuMaterial m = materials[payload.material];
     vec3 n = facingNormal(payload.normal, b.direction);
+    vec3 ns = facingShading(payload.shading, payload.normal, b.direction);  // = n but on meshes
     vec3 p = payload.position;
     float e = payload.error;
     float radius = payload.radius;
-    bool entering = payload.frontFace == 1u;
-    Split s = splitAt(m, entering, n, b.direction);
-    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, e, n, -b.direction, tree.rays);
+    bool entering = payload.frontFace == 1u;  // from the hit kind on meshes (chapter 12)
+    Split s = splitAt(m, entering, ns, b.direction);
+    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, e, n, ns, -b.direction, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
-        vec3 t = refract(b.direction, n, s.eta), o = secondaryOrigin(p, e, -n);
+        vec3 t = refractedDirection(b.direction, n, ns, s.eta), o = secondaryOrigin(p, e, -n);
         float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
-        tree.stack[tree.top++] = Branch(o, b.depth + 1u, normalize(t), tMax, tr, 0.0);
+        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, b.depth + 1u, t, tMax, tr, 0.0);
+        else rf += tr;  // only a mesh's flat triangle can reflect it all (sides above)
     }
     // [end]
     if (maxComponent(rf) >= MIN_THROUGHPUT) {
         vec3 o = secondaryOrigin(p, e, n);
         float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
-        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflect(b.direction, n), tMax, rf, 0.0);
+        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflectedDirection(b.direction, n, ns), tMax, rf, 0.0);
     }
 }
 

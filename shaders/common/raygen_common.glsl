@@ -21,6 +21,17 @@ vec3 facingNormal(vec3 normal, vec3 direction) {
     return dot(normal, direction) < 0.0 ? normal : -normal;
 }
 
+// [region shading_normal]
+// Chapter 12: the shading normal turned with the geometric one. Where it
+// faces away from the ray (an interpolated normal near a silhouette), the
+// flat triangle's own normal shades instead: a cosine below zero has no
+// meaning for Fresnel or for a highlight.
+vec3 facingShading(vec3 shading, vec3 normal, vec3 direction) {
+    vec3 ns = dot(normal, direction) < 0.0 ? shading : -shading;
+    return dot(ns, direction) < 0.0 ? ns : facingNormal(normal, direction);
+}
+// [end]
+
 void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
     imageStore(target, ivec2(pixel), vec4(color, 1.0));
     rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;

@@ -96,25 +96,34 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
 // [region diffuse_specular]
 // Diffuse and Blinn-Phong specular together, one shadow ray per light:
 // k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
-vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
+// Chapter 12's meshes light with their interpolated normal `ns`; shadow
+// rays still leave along the surface's own normal n (ns = n before).
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, inout uint rays) {
     vec3 sum = vec3(0.0);
     vec3 origin = secondaryOrigin(p, error, n);
     for (uint i = 0u; i < camera.counts.z; ++i) {
         vec3 l = safeNormalize(lights[i].position.xyz - p);
-        float ndotl = dot(n, l);
+        float ndotl = dot(ns, l);
         if (ndotl <= 0.0) continue;
         ++rays;
         if (!lightVisible(origin, lights[i].position.xyz)) continue;
         vec3 h = normalize(l + v);
-        float specular = specularPower(n, h, m.params.x);
+        float specular = specularPower(ns, h, m.params.x);
         sum += lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
     }
     return sum;
 }
 // [end]
 
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
+    return diffuseSpecularTerm(m, p, error, n, n, v, rays);
+}
+
 // Chapter 07's whole local model: ambient + diffuse + specular.
+vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, inout uint rays) {
+    return ambientTerm(m) + diffuseSpecularTerm(m, p, error, n, ns, v, rays);
+}
 vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
-    return ambientTerm(m) + diffuseSpecularTerm(m, p, error, n, v, rays);
+    return localShading(m, p, error, n, n, v, rays);
 }
 #endif

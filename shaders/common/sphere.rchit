@@ -27,6 +27,7 @@ void main() {
     payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.material = objects[index].material;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
+    payload.shading = payload.normal;  // flat or analytic: one normal
     payload.radius = objects[index].radius;
 }
 // [end]

@@ -1,0 +1,59 @@
+#version 460
+// Closest-hit for triangle meshes (chapter 12) and the tessellated sphere
+// (--sphere-mesh). Triangles need no intersection shader: the traversal
+// finds the hit itself, watertight, and hands over two barycentrics.
+// This shader reads the triangle's vertices by device address, and
+// describes the hit: the geometric normal of the flat triangle (offsets and
+// sides), the interpolated vertex normal (shading), and the side the ray
+// came from, from the hit kind (the winding), never from a normal.
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+#include "rt_bindings.glsl"
+#include "payload.glsl"
+#include "hit_error.glsl"
+
+// [region buffers]
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Floats { float f[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices { uint i[]; };
+layout(binding = RT_BINDING_MESHES, std430) readonly buffer Meshes { GpuMesh meshes[]; };
+
+vec3 vec3At(Floats data, uint vertex) {
+    return vec3(data.f[3u * vertex], data.f[3u * vertex + 1u], data.f[3u * vertex + 2u]);
+}
+// [end]
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
+hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and third vertex
+
+// [region closest_hit]
+void main() {
+    GpuObject object = objects[gl_InstanceCustomIndexEXT];
+    GpuMesh mesh = meshes[object.mesh];
+    Indices indices = Indices(mesh.indices);
+    uvec3 v = uvec3(indices.i[3u * gl_PrimitiveID], indices.i[3u * gl_PrimitiveID + 1u],
+                    indices.i[3u * gl_PrimitiveID + 2u]);
+    Floats positions = Floats(mesh.vertices);
+    vec3 a = vec3At(positions, v.x), b = vec3At(positions, v.y), c = vec3At(positions, v.z);
+    vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
+    vec3 local = w.x * a + w.y * b + w.z * c;  // on the flat triangle
+    // Counter-clockwise seen from outside: b - a, c - a, and their cross
+    // product points out. Normals go to world space with the inverse transpose.
+    payload.normal = normalize(cross(b - a, c - a) * mat3(gl_WorldToObjectEXT));
+    payload.shading = payload.normal;
+    if (mesh.normals != uvec2(0u)) {  // smooth: the vertex normals, interpolated
+        Floats normals = Floats(mesh.normals);
+        vec3 n = w.x * vec3At(normals, v.x) + w.y * vec3At(normals, v.y) + w.z * vec3At(normals, v.z);
+        vec3 world = n * mat3(gl_WorldToObjectEXT);
+        if (dot(world, world) > 0.0) payload.shading = normalize(world);
+    }
+    // The hardware's own verdict from the winding: no normal can get it wrong.
+    payload.frontFace = gl_HitKindEXT == gl_HitKindFrontFacingTriangleEXT ? 1u : 0u;
+    payload.t = gl_HitTEXT;
+    payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
+    payload.error = hitError(max(abs(a), max(abs(b), abs(c))), gl_ObjectToWorldEXT, payload.normal);
+    payload.material = object.material;
+    payload.radius = 0.0;  // no bound on the way out: a mesh can be any shape
+}
+// [end]

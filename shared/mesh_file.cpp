@@ -1,0 +1,282 @@
+#include "mesh_file.h"
+
+#include "files.h"
+
+#include <tiny_gltf.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace rg {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+
+std::string lowerExtension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+// ---- OBJ -----------------------------------------------------------------
+
+// One mesh per material the faces use; vertices that share position and
+// normal indices are one vertex.
+MeshFile loadObj(const std::string& path) {
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    config.mtl_search_path = std::filesystem::path(path).parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path, config)) {
+        std::string why = reader.Error();
+        why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
+        fail(path, "not an OBJ file tinyobjloader reads (" + (why.empty() ? std::string("no reason given") : why) + ")");
+    }
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    MeshFile file;
+    for (const tinyobj::material_t& m : reader.GetMaterials()) {
+        FileMaterial f{.name = m.name, .baseColor = {m.diffuse[0], m.diffuse[1], m.diffuse[2]}, .metallic = 0};
+        f.roughness = std::clamp(std::sqrt(2.0 / (m.shininess + 2.0)), 0.0, 1.0);  // Blinn-Phong exponent -> roughness
+        f.transmission = std::clamp(1.0 - m.dissolve, 0.0, 1.0);
+        f.ior = m.ior >= 1 ? m.ior : 1.5;
+        if (m.illum == 3 || m.illum == 5) f.metallic = 1, f.baseColor = {m.specular[0], m.specular[1], m.specular[2]};
+        file.materials.push_back(f);
+    }
+    std::map<int, uint32_t> meshOfMaterial;
+    std::vector<std::map<std::pair<int, int>, uint32_t>> vertexOf;
+    auto vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        size_t offset = 0;
+        for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+            size_t corners = shape.mesh.num_face_vertices[f];
+            int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+            if (material >= int(file.materials.size())) material = -1;
+            auto [it, added] = meshOfMaterial.try_emplace(material, uint32_t(file.meshes.size()));
+            if (added) {
+                file.meshes.push_back({.name = path + (material >= 0 ? ": material " + file.materials[material].name : "")});
+                file.parts.push_back({.mesh = it->second, .material = material});
+                vertexOf.emplace_back();
+            }
+            Mesh& mesh = file.meshes[it->second];
+            if (corners != 3) fail(path, "face " + std::to_string(f) + " of \"" + shape.name + "\" is not a triangle");
+            for (size_t k = 0; k < 3; ++k) {
+                tinyobj::index_t index = shape.mesh.indices[offset + k];
+                if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertexCount)
+                    fail(path, "face " + std::to_string(f) + " uses vertex " + std::to_string(index.vertex_index + 1) +
+                                   ", but there are " + std::to_string(vertexCount) + " vertices");
+                int normal = index.normal_index;
+                if (normal >= 0 && size_t(normal) >= normalCount)
+                    fail(path, "face " + std::to_string(f) + " uses normal " + std::to_string(normal + 1) +
+                                   ", but there are " + std::to_string(normalCount) + " normals");
+                auto [v, isNew] = vertexOf[it->second].try_emplace({index.vertex_index, normal}, uint32_t(mesh.vertices.size()));
+                if (isNew) {
+                    const float* p = &attrib.vertices[3 * size_t(index.vertex_index)];
+                    mesh.vertices.push_back({p[0], p[1], p[2]});
+                    if (normal >= 0) {
+                        const float* n = &attrib.normals[3 * size_t(normal)];
+                        mesh.normals.push_back({n[0], n[1], n[2]});
+                    }
+                }
+                mesh.indices.push_back(v->second);
+            }
+            offset += corners;
+        }
+    }
+    for (Mesh& mesh : file.meshes) {
+        if (mesh.normals.size() != mesh.vertices.size()) mesh.normals.clear();  // some faces without: flat
+        checkMesh(mesh);
+    }
+    if (file.meshes.empty()) fail(path, "no faces: an empty mesh");
+    return file;
+}
+
+// ---- glTF ----------------------------------------------------------------
+
+// The elements of an accessor as floats (3 or 2 a vertex) or indices, with
+// every range checked against its buffer: a file could point anywhere.
+struct AccessorReader {
+    const tinygltf::Model& model;
+    const std::string& path;
+
+    const unsigned char* bytes(int index, int type, size_t componentSize, size_t& count, size_t& stride,
+                               const std::string& what) const {
+        if (index < 0 || size_t(index) >= model.accessors.size()) fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = model.accessors[index];
+        if (a.sparse.isSparse) fail(path, what + ": sparse accessors are not read");
+        if (a.type != type) fail(path, what + ": accessor " + std::to_string(index) + " has the wrong element type");
+        if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size())
+            fail(path, what + ": accessor " + std::to_string(index) + " has no buffer view");
+        const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
+        if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+            fail(path, what + ": buffer view " + std::to_string(a.bufferView) + " has no buffer");
+        const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+        int components = tinygltf::GetNumComponentsInType(a.type);
+        size_t element = componentSize * size_t(components);
+        count = a.count;
+        stride = view.byteStride ? view.byteStride : element;
+        size_t need = count == 0 ? 0 : a.byteOffset + (count - 1) * stride + element;
+        if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset ||
+            need > view.byteLength)
+            fail(path, what + ": accessor " + std::to_string(index) + " reaches past the end of its buffer");
+        return buffer.data.data() + view.byteOffset + a.byteOffset;
+    }
+
+    std::vector<glm::vec3> vec3s(int index, const std::string& what) const {
+        if (index >= 0 && size_t(index) < model.accessors.size() &&
+            model.accessors[index].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+            fail(path, what + ": only float components are read (no KHR_mesh_quantization)");
+        size_t count, stride;
+        const unsigned char* p = bytes(index, TINYGLTF_TYPE_VEC3, 4, count, stride, what);
+        std::vector<glm::vec3> out(count);
+        for (size_t i = 0; i < count; ++i) std::memcpy(&out[i], p + i * stride, sizeof(glm::vec3));
+        return out;
+    }
+
+    std::vector<uint32_t> indices(int index, const std::string& what) const {
+        if (index < 0 || size_t(index) >= model.accessors.size()) fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+        int type = model.accessors[index].componentType;
+        size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                       : 0;
+        if (size == 0) fail(path, what + ": indices must be unsigned bytes, shorts or ints");
+        size_t count, stride;
+        const unsigned char* p = bytes(index, TINYGLTF_TYPE_SCALAR, size, count, stride, what);
+        std::vector<uint32_t> out(count);
+        for (size_t i = 0; i < count; ++i) {
+            uint32_t v = 0;
+            std::memcpy(&v, p + i * stride, size);  // little-endian, as glTF's buffers are
+            out[i] = v;
+        }
+        return out;
+    }
+};
+
+double extensionNumber(const tinygltf::ExtensionMap& extensions, const std::string& name, const std::string& key,
+                       double fallback) {
+    auto it = extensions.find(name);
+    if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& v = it->second.Get(key);
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+// A node's transform: its matrix, or translation * rotation * scale.
+glm::dmat4 nodeTransform(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glm
+    glm::dmat4 m(1.0);
+    if (node.translation.size() == 3) m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1);
+    if (node.rotation.size() == 4)  // x, y, z, w
+        m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+    if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+    return m;
+}
+
+// Images are not needed (base colour textures are not read): no decoding.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+MeshFile loadGltf(const std::string& path, bool binary) {
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skipImage, nullptr);
+    std::string error, warning;
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                     : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    if (!ok) {
+        std::replace(error.begin(), error.end(), '\n', ' ');
+        while (!error.empty() && error.back() == ' ') error.pop_back();
+        fail(path, "not a glTF file tinygltf reads (" + (error.empty() ? std::string("no reason given") : error) + ")");
+    }
+    MeshFile file;
+    for (const tinygltf::Material& m : model.materials) {
+        const auto& pbr = m.pbrMetallicRoughness;
+        FileMaterial f{.name = m.name.empty() ? "material " + std::to_string(file.materials.size()) : m.name};
+        if (pbr.baseColorFactor.size() >= 3) f.baseColor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]};
+        f.metallic = std::clamp(pbr.metallicFactor, 0.0, 1.0);
+        f.roughness = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+        f.transmission = std::clamp(extensionNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0), 0.0, 1.0);
+        f.ior = std::clamp(extensionNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), 1.0, 10.0);
+        file.materials.push_back(f);
+    }
+    AccessorReader read{model, path};
+    // One checked mesh per primitive, made on first use; every placement shares it.
+    std::map<std::pair<int, int>, int> meshOf;
+    auto primitiveMesh = [&](int meshIndex, int p) -> int {
+        auto [it, added] = meshOf.try_emplace({meshIndex, p}, -1);
+        if (!added) return it->second;
+        const tinygltf::Primitive& primitive = model.meshes[meshIndex].primitives[p];
+        std::string what = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
+        if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+            ++file.skippedPrimitives;  // points, lines, strips and fans: not read
+            return -1;
+        }
+        auto position = primitive.attributes.find("POSITION");
+        if (position == primitive.attributes.end()) fail(path, what + ": no POSITION attribute");
+        Mesh mesh{.name = path + ": " + what};
+        mesh.vertices = read.vec3s(position->second, what + " POSITION");
+        auto normal = primitive.attributes.find("NORMAL");
+        if (normal != primitive.attributes.end()) mesh.normals = read.vec3s(normal->second, what + " NORMAL");
+        if (primitive.indices >= 0) {
+            mesh.indices = read.indices(primitive.indices, what + " indices");
+        } else {  // not indexed: every three vertices a triangle
+            mesh.indices.resize(mesh.vertices.size());
+            for (uint32_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = i;
+        }
+        checkMesh(mesh);
+        file.meshes.push_back(std::move(mesh));
+        return it->second = int(file.meshes.size() - 1);
+    };
+    // The default scene's nodes (or every root node), down the hierarchy.
+    std::vector<int> roots;
+    if (model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()) roots = model.scenes[model.defaultScene].nodes;
+    else if (!model.scenes.empty()) roots = model.scenes[0].nodes;
+    size_t visited = 0;
+    std::function<void(int, const glm::dmat4&, int)> visit = [&](int n, const glm::dmat4& parent, int depth) {
+        if (n < 0 || size_t(n) >= model.nodes.size()) fail(path, "node " + std::to_string(n) + " does not exist");
+        if (depth > 64 || ++visited > 10000000) fail(path, "the node hierarchy is deeper than 64 or has a cycle");
+        const tinygltf::Node& node = model.nodes[n];
+        glm::dmat4 transform = parent * nodeTransform(node);
+        if (node.mesh >= 0) {
+            if (size_t(node.mesh) >= model.meshes.size()) fail(path, "node " + std::to_string(n) + ": mesh " + std::to_string(node.mesh) + " does not exist");
+            for (size_t p = 0; p < model.meshes[node.mesh].primitives.size(); ++p) {
+                int mesh = primitiveMesh(node.mesh, int(p));
+                if (mesh < 0) continue;
+                int material = model.meshes[node.mesh].primitives[p].material;
+                if (material >= int(file.materials.size())) fail(path, "node " + std::to_string(n) + ": material " + std::to_string(material) + " does not exist");
+                file.parts.push_back({.mesh = uint32_t(mesh), .material = material, .transform = transform});
+            }
+        }
+        for (int child : node.children) visit(child, transform, depth + 1);
+    };
+    for (int n : roots) visit(n, glm::dmat4(1.0), 0);
+    for (const MeshPart& part : file.parts)
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(part.transform[c][r])) fail(path, "a node's transform is not finite");
+    if (file.parts.empty()) fail(path, "no triangles placed (an empty mesh, or a scene without mesh nodes)");
+    return file;
+}
+
+}  // namespace
+
+// [region load_mesh_file]
+MeshFile loadMeshFile(const std::string& path) {
+    requireRegularFile(path, "mesh file");
+    std::string extension = lowerExtension(path);
+    if (extension == ".obj") return loadObj(path);
+    if (extension == ".gltf" || extension == ".glb") return loadGltf(path, extension == ".glb");
+    fail(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
+}
+// [end]
+
+}  // namespace rg

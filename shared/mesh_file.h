@@ -1,0 +1,45 @@
+// Mesh files (chapter 12): glTF 2.0 (.gltf, .glb) through tinygltf and
+// Wavefront OBJ (.obj, with its .mtl) through tinyobjloader, both Debian's.
+// A file becomes checked meshes (mesh.h), the materials it names, and parts:
+// one placed mesh each (a glTF node's mesh primitive, an OBJ's faces of one
+// material). The scene format (scene.cpp) maps the materials onto RayGlass's.
+#pragma once
+#include "mesh.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+// A material as a glTF file describes it (an OBJ's .mtl is translated to
+// the same terms): metallic-roughness plus KHR_materials_transmission and
+// KHR_materials_ior.
+struct FileMaterial {
+    std::string name;
+    glm::dvec3 baseColor{1.0};  // linear
+    double metallic = 1, roughness = 1;  // glTF's defaults
+    double transmission = 0;    // KHR_materials_transmission
+    double ior = 1.5;           // KHR_materials_ior
+};
+
+struct MeshPart {
+    uint32_t mesh = 0;        // index into MeshFile::meshes
+    int material = -1;        // index into MeshFile::materials, -1: the file gives none
+    glm::dmat4 transform{1};  // the file's own placement (glTF node hierarchy)
+};
+
+struct MeshFile {
+    std::vector<Mesh> meshes;  // each checked (checkMesh); one per glTF primitive, however often placed
+    std::vector<FileMaterial> materials;
+    std::vector<MeshPart> parts;
+    size_t skippedPrimitives = 0;  // points and lines: not surfaces
+};
+
+// Throws InputError "<path>: <why>" for a file that is missing, not one of
+// the formats, malformed (accessors outside their buffers, sparse or
+// quantized positions) or holding a mesh checkMesh refuses.
+MeshFile loadMeshFile(const std::string& path);
+
+}  // namespace rg

@@ -1,0 +1,491 @@
+// Chapter 12: meshes from files, checked as they load, watertight where it
+// matters, and right by optics. The CPU tests use the loader and the
+// reference's ray-triangle test directly; the GPU tests run the chapter as
+// a user would (lavapipe in CI, validation on).
+#include "harness.h"
+
+#include "files.h"
+#include "mesh.h"
+#include "mesh_file.h"
+#include "reference.h"
+#include "scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
+#include <random>
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+
+std::string meshDir() { return (fs::path(RG_EXE_12).parent_path() / "assets" / "meshes").string(); }
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// The message of the InputError that `f` throws ("" if none).
+template <typename F>
+std::string inputError(F f) {
+    try {
+        f();
+    } catch (const rg::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+double signedVolume(const rg::Mesh& m) {
+    double v = 0;
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+        v += glm::dot(glm::dvec3(m.vertices[m.indices[t]]),
+                      glm::cross(glm::dvec3(m.vertices[m.indices[t + 1]]), glm::dvec3(m.vertices[m.indices[t + 2]])));
+    return v / 6;
+}
+
+// ---- Loading and checking -------------------------------------------------
+
+TEST(Meshes, GeneratedObjectsAreClosedAndWoundOutward) {
+    for (const char* name : {"lens.obj", "prism.obj", "slab.obj", "wine_glass.gltf", "icosphere_1.obj",
+                             "icosphere_3.obj", "icosphere_5.obj"}) {
+        rg::MeshFile file = rg::loadMeshFile(meshDir() + "/" + name);
+        ASSERT_FALSE(file.meshes.empty()) << name;
+        for (const rg::Mesh& m : file.meshes) {
+            EXPECT_EQ(m.openEdges, 0u) << name;
+            EXPECT_EQ(m.degenerate, 0u) << name;
+            EXPECT_GT(signedVolume(m), 0) << name << ": counter-clockwise seen from outside";
+        }
+    }
+    // The lens's volume, from its two spherical caps and the rim's cylinder (mm^3).
+    rg::Mesh lens = rg::loadMeshFile(meshDir() + "/lens.obj").meshes[0];
+    double R = 50, a = 15, sag = R - std::sqrt(R * R - a * a), rim = 5 - 2 * sag;
+    double exact = 2 * kPi * sag * sag * (3 * R - sag) / 3 + kPi * a * a * rim;
+    EXPECT_NEAR(signedVolume(lens), exact, 0.002 * exact);
+}
+
+TEST(Meshes, OpenAndMisorientedEdgesAreCounted) {
+    rg::Mesh closed = rg::icosphere(2);
+    rg::checkMesh(closed);
+    EXPECT_EQ(closed.openEdges, 0u);
+    rg::Mesh hole = rg::icosphere(2);
+    hole.indices.resize(hole.indices.size() - 3);  // one triangle less: its 3 edges are used once
+    rg::checkMesh(hole);
+    EXPECT_EQ(hole.openEdges, 3u);
+    rg::Mesh flipped = rg::icosphere(2);
+    std::swap(flipped.indices[1], flipped.indices[2]);  // one triangle wound the other way
+    rg::checkMesh(flipped);
+    EXPECT_EQ(flipped.openEdges, 3u);
+    rg::Mesh doubled = rg::icosphere(1);
+    doubled.indices.insert(doubled.indices.end(), doubled.indices.begin(), doubled.indices.begin() + 3);
+    rg::checkMesh(doubled);
+    EXPECT_EQ(doubled.openEdges, 3u);  // three edges now shared by three triangles
+    // Seams: the same positions under other indices (a file's split normals) still close.
+    rg::Mesh seams = rg::icosphere(1);
+    uint32_t copy = uint32_t(seams.vertices.size());
+    seams.vertices.push_back(seams.vertices[seams.indices[0]]);
+    seams.normals.push_back(seams.normals[seams.indices[0]]);
+    seams.indices[0] = copy;
+    rg::checkMesh(seams);
+    EXPECT_EQ(seams.openEdges, 0u);
+}
+
+TEST(Meshes, DegenerateTrianglesAreDroppedAndCounted) {
+    rg::Mesh m = rg::icosphere(1);
+    size_t triangles = m.indices.size() / 3;
+    m.indices.insert(m.indices.end(), {0, 0, 1, 2, 5, 2});  // a repeated vertex, twice
+    m.vertices.push_back(m.vertices[0] * 0.5f);
+    m.vertices.push_back(m.vertices[0] * 0.25f);
+    uint32_t a = uint32_t(m.vertices.size() - 2), b = a + 1;
+    m.normals.push_back(m.normals[0]), m.normals.push_back(m.normals[0]);
+    m.indices.insert(m.indices.end(), {0, a, b});  // three points on one line: no area
+    rg::checkMesh(m);
+    EXPECT_EQ(m.degenerate, 3u);
+    EXPECT_EQ(m.indices.size() / 3, triangles);
+}
+
+TEST(Meshes, BrokenMeshesAreRefusedWithOneLine) {
+    auto refused = [](rg::Mesh m) { return inputError([&] { rg::checkMesh(m); }); };
+    rg::Mesh outOfRange = rg::icosphere(0);
+    outOfRange.name = "m";
+    outOfRange.indices[4] = 12;
+    EXPECT_EQ(refused(outOfRange), "m: triangle 1 uses vertex 12, but there are 12 vertices");
+    rg::Mesh nan = rg::icosphere(0);
+    nan.name = "m";
+    nan.vertices[3].y = NAN;
+    EXPECT_EQ(refused(nan), "m: vertex 3 is not a finite number");
+    rg::Mesh infinite = rg::icosphere(0);
+    infinite.name = "m";
+    infinite.normals[5].x = INFINITY;
+    EXPECT_EQ(refused(infinite), "m: the normal of vertex 5 is not a finite number");
+    rg::Mesh empty;
+    empty.name = "m";
+    EXPECT_EQ(refused(empty), "m: no triangles (an empty mesh, or only degenerate ones)");
+}
+
+// A scene with one mesh object naming `file` (written beside it).
+std::string meshScene(const std::string& dir, const std::string& file, const std::string& material = "\"glass\"") {
+    std::string path = dir + "/scene.json";
+    writeText(path, R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "materials": {"glass": {"transmission": 1, "ior": 1.5}},
+        "objects": [{"type": "mesh", "file": ")" + file + R"(", "material": )" + material + "}]}");
+    return path;
+}
+
+// A glTF file of one triangle list, its floats in a base64 data URI, the
+// accessor claiming `count` vertices.
+std::string triangleGltf(const std::vector<float>& xyz, size_t count) {
+    const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string bytes(reinterpret_cast<const char*>(xyz.data()), xyz.size() * sizeof(float)), text;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
+        for (size_t k = 0; k < 4; ++k) text += i + k <= bytes.size() + (k == 0) ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
+           R"(, "uri": "data:application/octet-stream;base64,)" + text + R"("}],
+        "bufferViews": [{"buffer": 0, "byteLength": )" + std::to_string(bytes.size()) + R"(}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + std::to_string(count) +
+           R"(, "type": "VEC3"}]})";
+}
+
+TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
+    std::string dir = rgtest::outputDir("12_bad_files");
+    struct Case {
+        std::string name, text, expected;  // expected: a part of the message
+    };
+    std::vector<Case> cases = {
+        {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "uses vertex 9, but there are 3 vertices"},
+        {"nan.gltf", triangleGltf({0, 0, 0, 1, NAN, 0, 0, 1, 0}, 3), "vertex 1 is not a finite number"},
+        {"empty.obj", "# nothing\n", "empty"},
+        {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "no triangles"},
+        {"bad.gltf", "{ not json", "not a glTF file tinygltf reads"},
+        {"past.gltf", triangleGltf({0, 0, 0, 1, 0, 0, 0, 1, 0}, 30), ""},  // tinygltf or the loader: one line either way
+        {"model.stl", "solid x\n", "not a mesh file RayGlass reads (.gltf, .glb or .obj)"},
+    };
+    for (const Case& c : cases) {
+        writeText(dir + "/" + c.name, c.text);
+        std::string message = inputError([&] { rg::loadScene(meshScene(dir, c.name)); });
+        EXPECT_NE(message.find("scene.json: objects[0].file: "), std::string::npos) << c.name << ": " << message;
+        EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << c.name << ": " << message;
+    }
+    EXPECT_NE(inputError([&] { rg::loadScene(meshScene(dir, "missing.obj")); }).find("no such file: missing.obj"),
+              std::string::npos);
+    // An OBJ without materials needs the scene's.
+    writeText(dir + "/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    writeText(dir + "/bare.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {}},
+        "objects": [{"type": "mesh", "file": "tri.obj"}]})");
+    EXPECT_EQ(inputError([&] { rg::loadScene(dir + "/bare.json"); }),
+              dir + "/bare.json: objects[0].material: missing: tri.obj names no material for its mesh");
+}
+
+TEST(Meshes, ChaptersRefuseBadMeshesAndEarlierChaptersRefuseMeshes) {
+    std::string dir = rgtest::outputDir("12_refusals");
+    writeText(dir + "/range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    rgtest::RunResult bad = rgtest::run(RG_EXE_12, {"--headless", "--scene", meshScene(dir, "range.obj"), "--output",
+                                                    dir + "/x.png"});
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("uses vertex 9, but there are 3 vertices"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir + "/x.png"));
+    // Chapters 03-11 draw no meshes and say where they come.
+    std::string scene = RG_SOURCE_DIR "/assets/scenes/meshes.json";
+    for (const char* exe : {RG_EXE_03, RG_EXE_06, RG_EXE_10, RG_EXE_11}) {
+        rgtest::RunResult r = rgtest::run(exe, {"--headless", "--scene", scene, "--output", dir + "/y.png"});
+        EXPECT_EQ(r.exitCode, 2) << exe << ": " << r.output;
+        EXPECT_NE(r.output.find("triangle meshes come in chapter 12; run 12_triangle_meshes"), std::string::npos)
+            << r.output;
+    }
+}
+
+// ---- glTF materials ---------------------------------------------------------
+
+TEST(Meshes, GltfMaterialRoundTrip) {
+    std::string dir = rgtest::outputDir("12_gltf_material");
+    std::ifstream in(meshDir() + "/wine_glass.gltf");
+    nlohmann::json j = nlohmann::json::parse(in);
+    j["materials"][0] = {
+        {"name", "tinted"},
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}, {"metallicFactor", 0.25}, {"roughnessFactor", 0.5}}},
+        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}};
+    fs::copy_file(meshDir() + "/wine_glass.bin", dir + "/wine_glass.bin", fs::copy_options::overwrite_existing);
+    writeText(dir + "/tinted.gltf", j.dump());
+    rg::MeshFile file = rg::loadMeshFile(dir + "/tinted.gltf");
+    ASSERT_EQ(file.materials.size(), 1u);
+    const rg::FileMaterial& f = file.materials[0];
+    EXPECT_EQ(f.name, "tinted");
+    EXPECT_EQ(f.baseColor, glm::dvec3(0.2, 0.4, 0.6));
+    EXPECT_EQ(f.metallic, 0.25);
+    EXPECT_EQ(f.roughness, 0.5);
+    EXPECT_EQ(f.transmission, 0.75);
+    EXPECT_EQ(f.ior, 1.33);
+    ASSERT_EQ(file.parts.size(), 1u);
+    EXPECT_EQ(file.parts[0].material, 0);
+    // Its mapping onto RayGlass's material (docs/scene-format.md).
+    rg::Scene scene = rg::loadScene(meshScene(dir, "tinted.gltf", "\"glass\""));  // the scene's material overrides
+    EXPECT_EQ(scene.materials[scene.objects[0].material].name, "glass");
+    std::string noOverride = dir + "/own.json";
+    writeText(noOverride, R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"unused": {}},
+        "objects": [{"type": "mesh", "file": "tinted.gltf"}]})");
+    scene = rg::loadScene(noOverride);
+    const rg::Material& m = scene.materials[scene.objects[0].material];
+    EXPECT_EQ(m.name, "tinted.gltf: tinted");
+    EXPECT_NEAR(m.kd.g, 0.4 * 0.75 * 0.25, 1e-12);  // base (1 - metallic) (1 - transmission)
+    EXPECT_NEAR(m.reflectivity, 0.25 * 0.25, 1e-12);
+    EXPECT_EQ(m.transmission, 0.75);
+    EXPECT_EQ(m.ior, 1.33);
+    EXPECT_NEAR(m.f0, std::pow(0.33 / 2.33, 2), 1e-12);
+}
+
+// ---- Watertight ---------------------------------------------------------------
+
+// A scene holding one mesh at the identity, for the reference's own structures.
+rg::Scene oneMesh(const std::string& file) {
+    std::string dir = rgtest::outputDir("12_one_mesh_" + fs::path(file).stem().string());
+    return rg::loadScene(meshScene(dir, file));
+}
+
+// 10^6 rays, each aimed exactly at a point of an edge or at a vertex of a
+// closed mesh: every one must hit (Woop et al.'s test shares each edge's
+// function between its two triangles). From outside, each ray comes from
+// the front of every face at that point (else it may graze a silhouette
+// and miss by rights), so its first hit is a front face; from the centre
+// of these star-shaped meshes, each one leaves through a back face.
+TEST(Watertight, ReferenceNeverMissesEdgesOrVertices) {
+    for (const char* name : {"icosphere_3.obj", "lens.obj"}) {
+        rg::Scene scene = oneMesh(meshDir() + "/" + name);
+        rg::ReferenceRenderer reference(scene);
+        const auto& mesh = reference.meshData(0);
+        size_t triangles = mesh.indices.size() / 3;
+        // The faces at each position (a file repeats a vertex where normals split).
+        std::map<std::tuple<double, double, double>, std::vector<uint32_t>> facesAt;
+        auto key = [](const glm::dvec3& v) { return std::make_tuple(v.x, v.y, v.z); };
+        std::vector<glm::dvec3> faceNormal(triangles);
+        for (uint32_t t = 0; t < triangles; ++t) {
+            const uint32_t* v = &mesh.indices[3 * t];
+            faceNormal[t] = glm::normalize(glm::cross(mesh.vertices[v[1]] - mesh.vertices[v[0]],
+                                                      mesh.vertices[v[2]] - mesh.vertices[v[0]]));
+            for (int c = 0; c < 3; ++c) facesAt[key(mesh.vertices[v[c]])].push_back(t);
+        }
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const auto& v : mesh.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
+        glm::dvec3 centre = (lo + hi) / 2.0;
+        double reach = 2 * glm::length(hi - lo);
+        std::mt19937_64 rng(12);
+        std::uniform_real_distribution<double> u(0, 1);
+        std::normal_distribution<double> g;
+        uint64_t rays = 0, missed = 0, back = 0;
+        const uint64_t wanted = 500000;
+        while (rays < wanted) {
+            size_t t = size_t(u(rng) * triangles);
+            int k = int(u(rng) * 3);
+            glm::dvec3 a = mesh.vertices[mesh.indices[3 * t + k]], b = mesh.vertices[mesh.indices[3 * t + (k + 1) % 3]];
+            bool vertex = rays % 4 == 0;
+            glm::dvec3 target = vertex ? a : a + u(rng) * (b - a);  // a vertex, or a point of an edge
+            std::vector<uint32_t> faces;  // the faces that meet at the target
+            for (uint32_t f : facesAt[key(a)])
+                if (vertex || std::count(facesAt[key(b)].begin(), facesAt[key(b)].end(), f)) faces.push_back(f);
+            glm::dvec3 base(0);
+            for (uint32_t f : faces) base += faceNormal[f];
+            glm::dvec3 w = glm::normalize(base);
+            for (int tries = 0; tries < 20; ++tries) {  // a random direction in front of all of them
+                glm::dvec3 c = glm::normalize(base + 0.5 * glm::dvec3(g(rng), g(rng), g(rng)));
+                if (std::all_of(faces.begin(), faces.end(), [&](uint32_t f) { return glm::dot(c, faceNormal[f]) > 0.02; })) {
+                    w = c;
+                    break;
+                }
+            }
+            auto hit = rg::ReferenceRenderer::intersectMesh(mesh, target + reach * w, -w, 0, 1e300);
+            ++rays;
+            if (hit.t < 0) ++missed;
+            else if (!hit.front) ++back;
+        }
+        EXPECT_EQ(missed, 0u) << name << ": rays from outside passed through";
+        EXPECT_EQ(back, 0u) << name << ": a ray from outside met a back face first";
+        rays = missed = back = 0;
+        while (rays < wanted) {
+            size_t t = size_t(u(rng) * triangles);
+            glm::dvec3 a = mesh.vertices[mesh.indices[3 * t]], b = mesh.vertices[mesh.indices[3 * t + 1]];
+            glm::dvec3 target = rays % 4 == 0 ? a : a + u(rng) * (b - a);
+            auto hit = rg::ReferenceRenderer::intersectMesh(mesh, centre, glm::normalize(target - centre), 0, 1e300);
+            ++rays;
+            if (hit.t < 0) ++missed;
+            else if (hit.front) ++back;
+        }
+        EXPECT_EQ(missed, 0u) << name << ": rays from inside passed through";
+        EXPECT_EQ(back, 0u) << name << ": a ray from inside met a front face";
+    }
+}
+
+// The GPU's triangle test: the camera inside a closed, black icosphere under
+// a white sky; a million camera rays (1000 x 1000, fan of 150 degrees) meet
+// its 20,480 triangles, many within a float step of an edge or a vertex.
+// A single sky pixel would be a leak.
+TEST(Watertight, GpuCameraInsideClosedMeshSeesNoSky) {
+    std::string dir = rgtest::outputDir("12_leak");
+    writeText(dir + "/camera_inside.json", R"({"camera": {"position": [0.01, 0.02, 0.03], "look_at": [0.3, 0.2, 1], "fov_y_deg": 150},
+        "sky": {"top": 1, "horizon": 1, "bottom": 1}, "ambient": 0,
+        "materials": {"black": {"ka": 0, "kd": 0, "ks": 0}},
+        "objects": [{"type": "mesh", "file": ")" + meshDir() + R"(/icosphere_5.obj", "material": "black"}]})");
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", dir + "/camera_inside.json",
+                                                  "--width", "1000", "--height", "1000", "--frames", "1", "--depth",
+                                                  "0", "--output", dir + "/inside.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    rgtest::Png png = rgtest::readPng(dir + "/inside.png");
+    uint64_t leaks = 0;
+    for (int y = 0; y < png.height; ++y)
+        for (int x = 0; x < png.width; ++x) leaks += png.at(x, y)[0] != 0;
+    EXPECT_EQ(leaks, 0u);
+    EXPECT_EQ(rgtest::readJson(dir + "/inside.json")["validation_messages"], 0);
+}
+
+// ---- Optics -------------------------------------------------------------------
+
+// Snell's law in vector form, written here again: n faces the incoming ray.
+bool refractRay(const glm::dvec3& d, const glm::dvec3& n, double eta, glm::dvec3& t) {
+    double c = -glm::dot(n, d), k = 1 - eta * eta * (1 - c * c);
+    if (k < 0) return false;
+    t = glm::normalize(eta * d + (eta * c - std::sqrt(k)) * n);
+    return true;
+}
+
+// Through a glass mesh: in at the first hit, out at the next; returns the
+// direction leaving it (false if it does not get through).
+bool throughGlass(const rg::ReferenceRenderer& r, glm::dvec3 o, glm::dvec3 d, double n, glm::dvec3& out,
+                  glm::dvec3* exitPoint = nullptr, bool smooth = true) {
+    rg::ReferenceHit in = r.trace(o, d, 0, 1e300);
+    if (in.t < 0 || !in.frontFace) return false;
+    glm::dvec3 p = o + in.t * d, t;
+    if (!refractRay(d, smooth ? in.shading : in.normal, 1 / n, t)) return false;
+    rg::ReferenceHit leave = r.trace(p + 1e-9 * t, t, 0, 1e300);
+    if (leave.t < 0 || leave.frontFace) return false;
+    glm::dvec3 q = p + 1e-9 * t + leave.t * t;
+    if (!refractRay(t, -(smooth ? leave.shading : leave.normal), n, out)) return false;
+    if (exitPoint) *exitPoint = q;
+    return true;
+}
+
+// A 60-degree BK7 prism at minimum deviation: the ray crosses it parallel
+// to its base, deviated by 2 asin(n sin(A / 2)) - A = 38.64 degrees; any
+// other angle of incidence deviates it more.
+TEST(Optics, PrismDeviatesByTheMinimumDeviationAngle) {
+    rg::Scene scene = oneMesh(meshDir() + "/prism.obj");
+    rg::ReferenceRenderer r(scene);
+    const double n = 1.5168, A = 60 * kPi / 180;
+    const double expected = (2 * std::asin(n * std::sin(A / 2)) - A) * 180 / kPi;
+    ASSERT_NEAR(expected, 38.65, 0.02);
+    // The prism's apex points along +z (tools/make_meshes.cpp); face 1 is
+    // the one between the apex vertex and the next one. At minimum deviation
+    // the ray inside runs parallel to the base, perpendicular to the apex's bisector.
+    auto deviation = [&](double incidenceDeg) {
+        const rg::Mesh& m = *scene.meshes[0];
+        glm::dvec3 apex(m.vertices[0]), b(m.vertices[1]);
+        glm::dvec3 mid = (apex + b) / 2.0 + glm::dvec3(0, 15, 0);  // on face 1, half way up
+        glm::dvec3 faceNormal = glm::normalize(glm::cross(b - apex, glm::dvec3(0, 1, 0)));
+        if (glm::dot(faceNormal, mid - glm::dvec3(0, 15, 0)) < 0) faceNormal = -faceNormal;
+        double a = incidenceDeg * kPi / 180;
+        glm::dvec3 up(0, 1, 0), side = glm::normalize(glm::cross(up, faceNormal));
+        glm::dvec3 d = -(std::cos(a) * faceNormal) - std::sin(a) * side;  // toward the face, turned away from the apex
+        if (glm::dot(d + faceNormal * glm::dot(-d, faceNormal), apex - mid) > 0) d = -(std::cos(a) * faceNormal) + std::sin(a) * side;
+        glm::dvec3 out;
+        if (!throughGlass(r, mid - 100.0 * d, d, n, out, nullptr, false)) return 999.0;
+        return std::acos(std::clamp(glm::dot(d, out), -1.0, 1.0)) * 180 / kPi;
+    };
+    double incidence = std::asin(n * std::sin(A / 2)) * 180 / kPi;  // 49.32 degrees
+    double atMinimum = deviation(incidence);
+    std::printf("prism: deviation %.4f deg at incidence %.4f deg (optics: %.4f)\n", atMinimum, incidence, expected);
+    EXPECT_NEAR(atMinimum, expected, 0.05);
+    EXPECT_GT(deviation(incidence - 3), atMinimum);
+    EXPECT_GT(deviation(incidence + 3), atMinimum);
+}
+
+// The biconvex lens (R = +-50 mm, 5 mm thick, n = 1.5168): thick-lens optics
+// puts the focus of a paraxial beam 47.54 mm behind the rear vertex (back
+// focal length) and gives an effective focal length of 49.21 mm; traced
+// through the mesh with its interpolated normals, within 1 %.
+TEST(Optics, LensFocusesWhereThickLensOpticsPutsIt) {
+    rg::Scene scene = oneMesh(meshDir() + "/lens.obj");
+    rg::ReferenceRenderer r(scene);
+    const double n = 1.5168, R = 50, t = 5;
+    double power = (n - 1) * (2 / R - (n - 1) * t / (n * R * R));
+    double efl = 1 / power, bfl = efl * (1 - (n - 1) * t / (n * R));
+    ASSERT_NEAR(efl, 49.21, 0.01);
+    ASSERT_NEAR(bfl, 47.54, 0.01);
+    for (double h : {0.5, 1.0, 2.0}) {  // heights in mm, off the axis (y) along x
+        glm::dvec3 out, exit;
+        ASSERT_TRUE(throughGlass(r, {h, -100, 0.3 * h}, {0, 1, 0}, n, out, &exit)) << h;
+        // Where the ray meets the axis (x = 0, z = 0: its radial distance is 0).
+        glm::dvec2 radial(exit.x, exit.z), dir(out.x, out.z);
+        double s = -glm::dot(radial, dir) / glm::dot(dir, dir);
+        double focus = exit.y + s * out.y - t / 2;  // from the rear vertex at y = t/2
+        double slope = glm::length(dir) / out.y;
+        double f = glm::length(glm::dvec2(h, 0.3 * h)) / slope;  // the ray's height over its angle
+        std::printf("lens: ray at %.2f mm: back focal length %.3f mm (optics %.3f), effective %.3f mm (optics %.3f)\n",
+                    glm::length(glm::dvec2(h, 0.3 * h)), focus, bfl, f, efl);
+        EXPECT_NEAR(focus, bfl, 0.01 * bfl) << "height " << h;
+        EXPECT_NEAR(f, efl, 0.01 * efl) << "height " << h;
+    }
+}
+
+// ---- Instancing and the fuzz pass ------------------------------------------
+
+TEST(Meshes, OneFilePlacedAThousandTimesIsOneBlas) {
+    std::string dir = rgtest::outputDir("12_instanced");
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene",
+                                                  RG_SOURCE_DIR "/tests/mesh_scenes/instanced_1000.json", "--width",
+                                                  "64", "--height", "36", "--frames", "1", "--output", dir + "/i.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/i.json");
+    ASSERT_EQ(report["acceleration"]["meshes"].size(), 1u);
+    const nlohmann::json& mesh = report["acceleration"]["meshes"][0];
+    EXPECT_EQ(mesh["instances"], 1000);
+    EXPECT_EQ(mesh["triangles"], 320);
+    EXPECT_GT(mesh["blas_bytes"].get<double>(), 0);
+    EXPECT_EQ(report["acceleration"]["tlas_instances"], 1001);  // and the floor
+    EXPECT_EQ(report["validation_messages"], 0);
+}
+
+// Mutated mesh files (bytes changed, cut short, numbers made huge or NaN):
+// each loads or is refused with an InputError; nothing else may happen.
+TEST(Meshes, FuzzedFilesLoadOrAreRefused) {
+    std::string dir = rgtest::outputDir("12_fuzz");
+    std::mt19937_64 rng(7);
+    const char* tokens[] = {"nan", "inf", "-1", "1e39", "99999999999", "0", "f", "v", "/", "\"", "{", "]", ","};
+    uint64_t loaded = 0, refused = 0;
+    for (const char* name : {"icosphere_1.obj", "prism.obj", "wine_glass.gltf"}) {
+        std::ifstream in(meshDir() + "/" + name, std::ios::binary);
+        std::string original((std::istreambuf_iterator<char>(in)), {});
+        std::string ext = fs::path(name).extension().string();
+        for (int k = 0; k < 150; ++k) {
+            std::string text = original;
+            for (int edits = 1 + int(rng() % 4); edits > 0; --edits) {
+                size_t at = rng() % text.size();
+                switch (rng() % 4) {
+                    case 0: text[at] = char(rng() % 128); break;
+                    case 1: text.resize(at); break;
+                    case 2: text.insert(at, tokens[rng() % std::size(tokens)]); break;
+                    default: text.erase(at, rng() % 16); break;
+                }
+                if (text.empty()) text = "x";
+            }
+            std::string path = dir + "/fuzz" + ext;
+            writeText(path, text);
+            if (ext == ".gltf") fs::copy_file(meshDir() + "/wine_glass.bin", dir + "/wine_glass.bin", fs::copy_options::skip_existing);
+            try {
+                rg::MeshFile f = rg::loadMeshFile(path);
+                ++loaded;
+            } catch (const rg::InputError& e) {
+                ++refused;
+                EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+            }
+        }
+    }
+    EXPECT_GT(refused, 0u);
+    EXPECT_GT(loaded + refused, 449u);
+}
+
+}  // namespace

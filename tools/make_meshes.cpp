@@ -1,0 +1,261 @@
+// Writes chapter 12's objects from the real world, procedurally (no
+// downloaded assets), into the folder given: each is a closed, consistently
+// wound surface, counter-clockwise seen from outside. Lengths are in
+// millimetres, as an optician gives them.
+//   lens.obj         biconvex BK7 lens, R = +-50 mm, centre thickness 5 mm, 30 mm across
+//   prism.obj        60-degree prism, 30 mm sides, 30 mm tall (flat faces)
+//   slab.obj         glass slab 40 x 30 x 10 mm (flat faces)
+//   wine_glass.gltf  a lathe-turned wine glass, with its glass material (+ .bin)
+//   icosphere_N.obj  the unit icosphere at levels 1-5 (smooth normals)
+//   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
+#include "files.h"
+#include "mesh.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void writeText(const std::string& path, const std::string& text) { rg::writeFileAtomically(path, text.data(), text.size()); }
+
+std::string toObj(const rg::Mesh& m, const std::string& comment) {
+    std::string out = "# " + comment + "\n";
+    char line[128];
+    for (const glm::vec3& v : m.vertices) std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v.x, v.y, v.z), out += line;
+    for (const glm::vec3& n : m.normals) std::snprintf(line, sizeof line, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z), out += line;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        uint32_t a = m.indices[t] + 1, b = m.indices[t + 1] + 1, c = m.indices[t + 2] + 1;
+        if (m.normals.empty()) std::snprintf(line, sizeof line, "f %u %u %u\n", a, b, c);
+        else std::snprintf(line, sizeof line, "f %u//%u %u//%u %u//%u\n", a, a, b, b, c, c);
+        out += line;
+    }
+    return out;
+}
+
+// A surface of revolution about +y: the profile (r, y) from the axis round
+// to the axis, each point with its 2D outward normal; `segments` around.
+// Points on the axis (r = 0) are one vertex each, so no triangle there is
+// degenerate.
+rg::Mesh lathe(const std::vector<glm::dvec2>& profile, const std::vector<glm::dvec2>& normals, int segments) {
+    rg::Mesh m;
+    std::vector<uint32_t> first(profile.size());
+    for (size_t i = 0; i < profile.size(); ++i) {
+        first[i] = uint32_t(m.vertices.size());
+        int count = profile[i].x == 0 ? 1 : segments;
+        for (int s = 0; s < count; ++s) {
+            double a = 2 * kPi * s / segments, c = std::cos(a), sn = std::sin(a);
+            m.vertices.push_back(glm::vec3(float(profile[i].x * c), float(profile[i].y), float(-profile[i].x * sn)));
+            m.normals.push_back(glm::normalize(glm::vec3(float(normals[i].x * c), float(normals[i].y), float(-normals[i].x * sn))));
+        }
+    }
+    auto at = [&](size_t i, int s) { return profile[i].x == 0 ? first[i] : first[i] + uint32_t(s % segments); };
+    for (size_t i = 0; i + 1 < profile.size(); ++i) {
+        if (profile[i] == profile[i + 1]) continue;  // a crease: the same point twice, with two normals
+        for (int s = 0; s < segments; ++s) {
+            uint32_t a = at(i, s), b = at(i, s + 1), c = at(i + 1, s), d = at(i + 1, s + 1);
+            if (profile[i].x != 0) m.indices.insert(m.indices.end(), {a, c, b});
+            if (profile[i + 1].x != 0) m.indices.insert(m.indices.end(), {b, c, d});
+        }
+    }
+    // Outward: a positive enclosed volume (the divergence theorem); the
+    // profile's direction decides the winding, so it is checked, not assumed.
+    double volume = 0;
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+        volume += glm::dot(glm::dvec3(m.vertices[m.indices[t]]),
+                           glm::cross(glm::dvec3(m.vertices[m.indices[t + 1]]), glm::dvec3(m.vertices[m.indices[t + 2]])));
+    if (volume < 0)
+        for (size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    return m;
+}
+
+// Points of an arc of the circle (centre, radius) from angle a0 to a1, with
+// outward normals (sign +1) or inward (-1).
+void arc(std::vector<glm::dvec2>& p, std::vector<glm::dvec2>& n, glm::dvec2 centre, double radius, double a0, double a1,
+         int steps, double sign) {
+    for (int k = 0; k <= steps; ++k) {
+        double a = a0 + (a1 - a0) * k / steps;
+        glm::dvec2 dir(std::cos(a), std::sin(a));
+        p.push_back(centre + radius * dir);
+        n.push_back(sign * dir);
+    }
+}
+
+// [region lens]
+// Biconvex lens about the y axis, its profile from the axis out along the
+// lower surface (a circle of radius R centred at y = R - t/2), up the short
+// cylindrical rim, and back along the upper surface to the axis. Each
+// point's normal is the surface's exact one, so the interpolated normals
+// are the sphere's (a crease at both ends of the rim).
+rg::Mesh lens(double R, double t, double aperture) {
+    double reach = std::asin(aperture / R), halfRim = t / 2 - (R - std::sqrt(R * R - aperture * aperture));
+    const int steps = 64;
+    std::vector<glm::dvec2> p, n;
+    for (int k = 0; k <= steps; ++k) {
+        double a = reach * k / steps;
+        p.push_back({R * std::sin(a), (R - t / 2) - R * std::cos(a)}), n.push_back({std::sin(a), -std::cos(a)});
+    }
+    p.push_back({aperture, -halfRim}), n.push_back({1, 0});
+    p.push_back({aperture, halfRim}), n.push_back({1, 0});
+    for (int k = steps; k >= 0; --k) {
+        double a = reach * k / steps;
+        p.push_back({R * std::sin(a), -(R - t / 2) + R * std::cos(a)}), n.push_back({std::sin(a), std::cos(a)});
+    }
+    p.front().x = p.back().x = 0;  // exactly on the axis
+    return lathe(p, n, 256);
+}
+// [end]
+
+// A flat-faced solid: triangles of the given vertices, no normals.
+rg::Mesh prism(double side, double height) {
+    rg::Mesh m;
+    double r = side / std::sqrt(3.0);  // circumradius of the triangle
+    for (int k = 0; k < 3; ++k) {
+        double a = 2 * kPi * k / 3 + kPi / 2;
+        m.vertices.push_back(glm::vec3(float(r * std::cos(a)), 0.0f, float(-r * std::sin(a))));
+    }
+    for (int k = 0; k < 3; ++k) m.vertices.push_back(m.vertices[k] + glm::vec3(0, float(height), 0));
+    m.indices = {0, 2, 1, 3, 4, 5};  // bottom faces down, top up
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t a = k, b = (k + 1) % 3;
+        m.indices.insert(m.indices.end(), {a, b, b + 3, a, b + 3, a + 3});
+    }
+    return m;
+}
+
+rg::Mesh box(glm::vec3 size) {
+    rg::Mesh m;
+    glm::vec3 h = size / 2.0f;
+    for (int c = 0; c < 8; ++c) m.vertices.push_back({c & 1 ? h.x : -h.x, c & 2 ? h.y : -h.y, c & 4 ? h.z : -h.z});
+    m.indices = {0, 2, 3, 0, 3, 1,   4, 5, 7, 4, 7, 6,   0, 1, 5, 0, 5, 4,
+                 2, 6, 7, 2, 7, 3,   0, 4, 6, 0, 6, 2,   1, 3, 7, 1, 7, 5};
+    return m;
+}
+
+// A wine glass: bowl (outer and inner wall), rim, stem and foot, one closed profile.
+rg::Mesh wineGlass() {
+    std::vector<glm::dvec2> p, n;
+    auto point = [&](double r, double y, double nr, double ny) { p.push_back({r, y}), n.push_back(glm::normalize(glm::dvec2(nr, ny))); };
+    point(0, 0, 0, -1);             // foot, underside, on the axis
+    point(35, 0, 0, -1);
+    point(35, 0, 1, 0);             // crease at the foot's edge
+    point(35, 3, 1, 0.3);
+    point(6, 6, 0.3, 1);
+    point(4, 12, 1, 0);             // stem
+    point(4, 80, 1, -0.3);
+    arc(p, n, {0, 120}, 40, -kPi / 2 + 0.1, 0.35, 40, 1);   // bowl, outside, up to the rim
+    glm::dvec2 rimOut = p.back();
+    point(rimOut.x, rimOut.y, 0, 1);                        // the rim's top, a crease
+    point(rimOut.x - 1.5, rimOut.y, 0, 1);
+    point(rimOut.x - 1.5, rimOut.y, -1, 0);
+    arc(p, n, {0, 120}, 38.5, 0.35, -kPi / 2, 40, -1);      // bowl, inside, down to the axis
+    // The inside arc ends on the axis at y = 81.5, above the stem's top.
+    p.back().x = 0;
+    return lathe(p, n, 96);
+}
+
+rg::Mesh torus(double major, double minor, int around, int across) {
+    rg::Mesh m;
+    for (int i = 0; i < around; ++i)
+        for (int j = 0; j < across; ++j) {
+            double u = 2 * kPi * i / around, v = 2 * kPi * j / across;
+            glm::dvec3 c(std::cos(u), 0, -std::sin(u)), dir = std::cos(v) * c + std::sin(v) * glm::dvec3(0, 1, 0);
+            m.vertices.push_back(glm::vec3(major * c + minor * dir));
+            m.normals.push_back(glm::vec3(dir));
+        }
+    auto at = [&](int i, int j) { return uint32_t((i % around) * across + j % across); };
+    for (int i = 0; i < around; ++i)
+        for (int j = 0; j < across; ++j)
+            m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    return m;
+}
+
+// glTF 2.0: one mesh, one node, one material; the buffer beside (.gltf + .bin) or inside (.glb).
+void writeGltf(const std::string& path, const rg::Mesh& m, const nlohmann::json& material, bool binary) {
+    std::vector<unsigned char> bin;
+    auto append = [&](const void* data, size_t bytes) {
+        const auto* b = static_cast<const unsigned char*>(data);
+        bin.insert(bin.end(), b, b + bytes);
+        while (bin.size() % 4) bin.push_back(0);
+    };
+    size_t vOffset = 0, vBytes = m.vertices.size() * 12;
+    append(m.vertices.data(), vBytes);
+    size_t nOffset = bin.size(), nBytes = m.normals.size() * 12;
+    append(m.normals.data(), nBytes);
+    size_t iOffset = bin.size(), iBytes = m.indices.size() * 4;
+    append(m.indices.data(), iBytes);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& v : m.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    std::string binName = path.substr(path.find_last_of('/') + 1);
+    binName = binName.substr(0, binName.find_last_of('.')) + ".bin";
+    nlohmann::json buffer = {{"byteLength", bin.size()}};
+    if (!binary) buffer["uri"] = binName;
+    nlohmann::json j = {
+        {"asset", {{"version", "2.0"}, {"generator", "RayGlass tools/make_meshes"}}},
+        {"extensionsUsed", {"KHR_materials_transmission", "KHR_materials_ior"}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}, {"name", "object"}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"material", 0}, {"mode", 4}}}}}}},
+        {"materials", {material}},
+        {"buffers", {buffer}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", vOffset}, {"byteLength", vBytes}, {"target", 34962}},
+                         {{"buffer", 0}, {"byteOffset", nOffset}, {"byteLength", nBytes}, {"target", 34962}},
+                         {{"buffer", 0}, {"byteOffset", iOffset}, {"byteLength", iBytes}, {"target", 34963}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", m.vertices.size()}, {"type", "VEC3"},
+                        {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"count", m.normals.size()}, {"type", "VEC3"}},
+                       {{"bufferView", 2}, {"componentType", 5125}, {"count", m.indices.size()}, {"type", "SCALAR"}}}},
+    };
+    if (!binary) {
+        rg::writeFileAtomically(path.substr(0, path.find_last_of('/') + 1) + binName, bin.data(), bin.size());
+        writeText(path, j.dump(1) + "\n");
+        return;
+    }
+    std::string text = j.dump();
+    while (text.size() % 4) text += ' ';
+    std::vector<unsigned char> glb;
+    auto u32 = [&](uint32_t v) { glb.insert(glb.end(), reinterpret_cast<unsigned char*>(&v), reinterpret_cast<unsigned char*>(&v) + 4); };
+    u32(0x46546C67), u32(2), u32(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+    u32(uint32_t(text.size())), u32(0x4E4F534A);
+    glb.insert(glb.end(), text.begin(), text.end());
+    u32(uint32_t(bin.size())), u32(0x004E4942);
+    glb.insert(glb.end(), bin.begin(), bin.end());
+    rg::writeFileAtomically(path, glb.data(), glb.size());
+}
+
+nlohmann::json glassMaterial(const std::string& name, double ior) {
+    return {{"name", name},
+            {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}}},
+            {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", ior}}}}}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: make_meshes FOLDER\n");
+        return 2;
+    }
+    std::string dir = argv[1];
+    try {
+        writeText(dir + "/lens.obj", toObj(lens(50, 5, 15), "biconvex lens, R = +-50 mm, centre thickness 5 mm, 30 mm across, axis y"));
+        writeText(dir + "/prism.obj", toObj(prism(30, 30), "60-degree prism, 30 mm sides, 30 mm tall, standing on y = 0"));
+        writeText(dir + "/slab.obj", toObj(box({40, 10, 30}), "glass slab 40 x 10 x 30 mm, centred"));
+        writeGltf(dir + "/wine_glass.gltf", wineGlass(), glassMaterial("glass", 1.5), false);
+        for (int level = 1; level <= 5; ++level)
+            writeText(dir + "/icosphere_" + std::to_string(level) + ".obj",
+                      toObj(rg::icosphere(level), "unit icosphere, level " + std::to_string(level)));
+        writeGltf(dir + "/torus_1m.glb", torus(40, 12, 1000, 500), glassMaterial("glass", 1.5), true);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "make_meshes: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
