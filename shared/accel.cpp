@@ -155,6 +155,25 @@ static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
     };
 }
 
+// Indexed triangles: float x, y, z vertices one after another, uint32 indices.
+static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices, uint32_t maxVertex,
+                                                           const Buffer& indices) {
+    return {
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
+        .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
+        .geometry = {.triangles = {
+            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
+            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
+            .vertexData = {.deviceAddress = vertices.address},
+            .vertexStride = 3 * sizeof(float),
+            .maxVertex = maxVertex,
+            .indexType = VK_INDEX_TYPE_UINT32,
+            .indexData = {.deviceAddress = indices.address},
+        }},
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
+    };
+}
+
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel, const Scene* scene,
                            bool fileOrder) {
     UnitShapes shapes;
@@ -167,20 +186,7 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     const uint32_t indices[] = {0, 2, 1, 0, 3, 2};
     Buffer vertexBuffer = createDeviceBuffer(gpu, inputs, vertices, sizeof(vertices), input);
     Buffer indexBuffer = createDeviceBuffer(gpu, inputs, indices, sizeof(indices), input);
-    VkAccelerationStructureGeometryKHR triangles{
-        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
-        .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
-        .geometry = {.triangles = {
-            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
-            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
-            .vertexData = {.deviceAddress = vertexBuffer.address},
-            .vertexStride = 3 * sizeof(float),
-            .maxVertex = 3,
-            .indexType = VK_INDEX_TYPE_UINT32,
-            .indexData = {.deviceAddress = indexBuffer.address},
-        }},
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
-    };
+    VkAccelerationStructureGeometryKHR triangles = triangleGeometry(vertexBuffer, 3, indexBuffer);
     shapes.stats.push_back({.name = "unit_quad", .geometry = "triangles"});
     shapes.quad = buildCompactedBlas(gpu, deletion, triangles, 2, shapes.stats.back());
 
@@ -224,21 +230,10 @@ MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh
     m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage);
     if (!mesh.normals.empty())
         m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3), usage);
-    VkAccelerationStructureGeometryKHR triangles{
-        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
-        .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
-        .geometry = {.triangles = {
-            .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR,
-            .vertexFormat = VK_FORMAT_R32G32B32_SFLOAT,
-            .vertexData = {.deviceAddress = m.vertices.address},
-            .vertexStride = sizeof(glm::vec3),
-            .maxVertex = uint32_t(mesh.vertices.size() - 1),  // the highest index any triangle uses, at most
-            .indexType = VK_INDEX_TYPE_UINT32,
-            .indexData = {.deviceAddress = m.indices.address},
-        }},
-        // Opaque: no any-hit shader runs, the closest triangle is the hit.
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
-    };
+    // Opaque, as every geometry here: no any-hit shader runs, the closest
+    // triangle is the hit. maxVertex: the highest index a triangle may use.
+    VkAccelerationStructureGeometryKHR triangles =
+        triangleGeometry(m.vertices, uint32_t(mesh.vertices.size() - 1), m.indices);
     m.blas = buildCompactedBlas(gpu, deletion, triangles, m.triangles, stats);
     return m;
 }
