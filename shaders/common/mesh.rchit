@@ -53,7 +53,6 @@ void main() {
     payload.t = gl_HitTEXT;
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
     payload.error = hitError(max(abs(a), max(abs(b), abs(c))), gl_ObjectToWorldEXT, payload.normal);
-    payload.material = object.material;
-    payload.radius = 0.0;  // no bound on the way out: a mesh can be any shape
+    payload.object = gl_InstanceCustomIndexEXT;
 }
 // [end]

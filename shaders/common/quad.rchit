@@ -17,9 +17,8 @@ void main() {
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
     payload.error = hitError(rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT),
                              gl_ObjectToWorldEXT, payload.normal);
-    payload.material = objects[gl_InstanceCustomIndexEXT].material;
+    payload.object = gl_InstanceCustomIndexEXT;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
     payload.shading = payload.normal;  // flat or analytic: one normal
-    payload.radius = 0.0;  // a quad has no inside
 }
 // [end]

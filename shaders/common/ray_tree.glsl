@@ -93,12 +93,12 @@ void growBranch() {
         tree.radiance += b.throughput * payload.radiance;
         return;
     }
-    GpuMaterial m = materials[payload.material];
+    GpuMaterial m = materials[objects[payload.object].material];
     vec3 n = facingNormal(payload.normal, b.direction);
     vec3 ns = facingShading(payload.shading, payload.normal, b.direction);  // = n but on meshes
     vec3 p = payload.position;
     float e = payload.error;
-    float radius = payload.radius;
+    float radius = objects[payload.object].radius;  // 0: not a sphere
     bool entering = payload.frontFace == 1u;  // from the hit kind on meshes (chapter 12)
     Split s = splitAt(m, entering, ns, b.direction);
     if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, e, n, ns, -b.direction, tree.rays);

@@ -25,9 +25,8 @@ void main() {
     vec3 magnitude = rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT);
     if (gl_HitKindEXT == 1u) magnitude += abs(gl_ObjectRayOriginEXT - s.xyz) + s.w;  // the far root: from inside
     payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
-    payload.material = objects[index].material;
+    payload.object = index;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
     payload.shading = payload.normal;  // flat or analytic: one normal
-    payload.radius = objects[index].radius;
 }
 // [end]
