@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <tuple>
 #include <utility>
@@ -120,6 +119,5 @@ void checkMesh(Mesh& mesh) {
     for (uint32_t i : mesh.indices) mesh.lo = glm::min(mesh.lo, mesh.vertices[i]), mesh.hi = glm::max(mesh.hi, mesh.vertices[i]);
 }
 // [end]
-
 
 }  // namespace rg

@@ -162,7 +162,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
     glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
     double t = -1;
-    glm::dvec3 localNormal, localShading(0);
+    glm::dvec3 localNormal, localShadingNormal(0);
     bool front = true;
     if (obj.type == ShapeType::Sphere) {
         double t0, t1;
@@ -180,7 +180,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
         const uint32_t* v = &mesh.indices[3 * h.triangle];
         localNormal = glm::cross(mesh.vertices[v[1]] - mesh.vertices[v[0]], mesh.vertices[v[2]] - mesh.vertices[v[0]]);
         if (!mesh.normals.empty())
-            localShading = h.weights.x * mesh.normals[v[0]] + h.weights.y * mesh.normals[v[1]] + h.weights.z * mesh.normals[v[2]];
+            localShadingNormal = h.weights.x * mesh.normals[v[0]] + h.weights.y * mesh.normals[v[1]] + h.weights.z * mesh.normals[v[2]];
     } else {
         if (d.y == 0) return;  // parallel to the plane
         t = -o.y / d.y;
@@ -194,7 +194,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     best.object = i;
     best.normal = glm::normalize(glm::transpose(glm::dmat3(inv)) * localNormal);
     best.shading = best.normal;
-    glm::dvec3 shading = glm::transpose(glm::dmat3(inv)) * localShading;
+    glm::dvec3 shading = glm::transpose(glm::dmat3(inv)) * localShadingNormal;
     if (glm::dot(shading, shading) > 0) best.shading = glm::normalize(shading);
     best.frontFace = obj.type == ShapeType::Quad ? glm::dot(best.normal, direction) < 0 : front;
     best.error = kRounding * (maxMagnitude(origin) + std::abs(t) * maxMagnitude(direction) + objectSize_[i]);

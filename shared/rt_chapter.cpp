@@ -92,10 +92,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
-        nlohmann::json launches = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs}};  // the last frame's
-        if (canTwo) launches["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},
+        nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs}};  // the last frame's launches
+        if (canTwo) extra["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},
                                                         {"queue_capacity", two.capacity}};
-        finishRtRun(app, opts, scene, rt, target, times, reference, launches);
+        finishRtRun(app, opts, scene, rt, target, times, reference, extra);
     });
 }
 

@@ -76,15 +76,16 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
     accel["blas_build_ms"] = blasMs;
     accel["tlas_bytes"] = rt.tlas.buildBytes;
     // Chapter 12: each mesh's one BLAS, and how many objects place it.
+    std::vector<size_t> placed(scene.meshes.size(), 0);
+    for (const Object& o : scene.objects)
+        if (o.type == ShapeType::Mesh) ++placed[o.mesh];
     nlohmann::json meshes = nlohmann::json::array();
     for (size_t k = 0; k < scene.meshes.size(); ++k) {
         const Mesh& m = *scene.meshes[k];
-        size_t placed = 0;
-        for (const Object& o : scene.objects) placed += o.type == ShapeType::Mesh && o.mesh == k;
         const BlasStats& stats = rt.shapes.stats[2 + k];  // after the unit quad and sphere
         meshes.push_back({{"name", m.name}, {"triangles", m.indices.size() / 3}, {"vertices", m.vertices.size()},
                           {"open_edges", m.openEdges}, {"degenerate_dropped", m.degenerate},
-                          {"instances", placed}, {"blas_bytes", stats.compactBytes},
+                          {"instances", placed[k]}, {"blas_bytes", stats.compactBytes},
                           {"blas_build_ms", stats.buildMs + stats.compactMs},
                           {"buffer_bytes", m.vertices.size() * sizeof(glm::vec3) * (m.normals.empty() ? 1 : 2) +
                                                m.indices.size() * sizeof(uint32_t)}});

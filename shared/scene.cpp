@@ -296,12 +296,11 @@ std::string findInput(const Reader& r, const std::string& scenePath, const std::
 // [region mesh_material]
 // A glTF material in RayGlass's terms (docs/scene-format.md): the base
 // colour is diffuse where the surface is neither metal nor glass; metal is
-// a tinted-free mirror of that strength; the highlight narrows as the
+// an untinted mirror of that strength; the highlight narrows as the
 // roughness falls (Blinn-Phong's exponent 2 / alpha^2 - 2 for GGX's alpha =
 // roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2.
 Material materialFromFile(const FileMaterial& f) {
-    Material m;
-    m.name = f.name;
+    Material m;  // named by the caller, after the file
     double dielectric = (1 - f.metallic) * (1 - f.transmission);
     m.kd = f.baseColor * dielectric;
     m.ka = m.kd;
@@ -335,7 +334,8 @@ public:
             Object o{.type = ShapeType::Mesh, .material = material ? *material : l.materials[part.material],
                      .moving = moving, .transform = transform * part.transform, .mesh = l.firstMesh + part.mesh};
             const Mesh& mesh = *scene_.meshes[o.mesh];
-            if (scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0)
+            bool open = scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0;
+            if (open && warnedOpen_.insert(o.mesh).second)  // once per mesh, however often it is placed
                 std::fprintf(stderr, "%s: %s: warning: %s is transmissive but not closed: %zu open edges "
                              "(glass needs a closed surface)\n", path_.c_str(), key.c_str(), mesh.name.c_str(), mesh.openEdges);
             scene_.objects.push_back(o);
@@ -375,6 +375,7 @@ private:
     const std::string& path_;
     Scene& scene_;
     std::map<std::string, Loaded> loaded_;
+    std::set<uint32_t> warnedOpen_;
 };
 
 }  // namespace
