@@ -230,6 +230,8 @@ MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh
     m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage);
     if (!mesh.normals.empty())
         m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3), usage);
+    if (!mesh.texcoords.empty())
+        m.texcoords = createDeviceBuffer(gpu, deletion, mesh.texcoords.data(), mesh.texcoords.size() * sizeof(glm::vec2), usage);
     // Opaque, as every geometry here: no any-hit shader runs, the closest
     // triangle is the hit. maxVertex: the highest index a triangle may use.
     VkAccelerationStructureGeometryKHR triangles =

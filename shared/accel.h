@@ -28,10 +28,11 @@ struct BlasStats {
 
 // Chapter 12: a triangle mesh on the GPU. The BLAS is built from the
 // vertex and index buffers, which stay: the closest-hit shader reads them
-// by their device addresses (barycentrics, smooth normals).
+// by their device addresses (barycentrics, smooth normals, texture coordinates).
 struct MeshBlas {
     AccelerationStructure blas;
     Buffer vertices, normals, indices;  // normals: empty when the mesh has none (flat faces)
+    Buffer texcoords;                   // empty when the mesh has none (untextured)
     uint32_t triangles = 0;
 };
 // Builds `mesh` as given: its triangles in the order they come (chapter 03:

@@ -79,6 +79,7 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
 #define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
 #define RT_BINDING_MESHES 8     // GpuMesh[]: where each mesh's buffers are (chapter 12, --sphere-mesh)
+#define RT_BINDING_TEXTURES 9   // vec4[] linear texels of every base colour texture, one after another (chapter 12)
 
 #define SHAPE_SPHERE 0u
 #define SHAPE_QUAD 1u
@@ -123,7 +124,7 @@ struct GpuMesh {
     uvec2 vertices;  // vec3 positions, tightly packed (the BLAS was built from them)
     uvec2 normals;   // vec3 per vertex; (0, 0): none, the faces are flat
     uvec2 indices;   // uint, three per triangle
-    uvec2 pad0;
+    uvec2 texcoords; // vec2 per vertex, glTF's (0, 0) at the image's top-left; (0, 0): none
 };
 RG_SIZE(GpuMesh, 32);
 // [end]
@@ -133,11 +134,20 @@ struct GpuMaterial {
     vec4 ka;
     vec4 kd;
     vec4 ks;
-    vec4 params;  // shininess, reflectivity, transmission, ior
-    vec4 extra;   // f0, roughness, unused, unused
+    vec4 params;   // shininess, reflectivity, transmission, ior
+    vec4 extra;    // f0, roughness, unused, unused
+    uvec4 texture; // chapter 12's base colour texture: its first texel in textures[],
+                   // width, height (0: none), TEXTURE_* flags
 };
-RG_SIZE(GpuMaterial, 80);
+RG_SIZE(GpuMaterial, 96);
 // [end]
+
+// GpuMaterial::texture.w: how each axis wraps (glTF's samplers), and the filter.
+#define TEXTURE_WRAP_REPEAT 0u
+#define TEXTURE_WRAP_CLAMP 1u
+#define TEXTURE_WRAP_MIRROR 2u
+#define TEXTURE_V_SHIFT 2u    // bits 0-1: u's wrap, bits 2-3: v's
+#define TEXTURE_NEAREST 16u   // magnification NEAREST; else bilinear
 
 struct GpuLight {
     vec4 position;

@@ -49,11 +49,15 @@ void checkMesh(Mesh& mesh) {
     const size_t n = mesh.vertices.size();
     if (mesh.indices.size() % 3 != 0) fail("the index count is not a multiple of 3");
     if (!mesh.normals.empty() && mesh.normals.size() != n) fail("the normals do not match the vertices one to one");
+    if (!mesh.texcoords.empty() && mesh.texcoords.size() != n)
+        fail("the texture coordinates do not match the vertices one to one");
     auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
     for (size_t i = 0; i < n; ++i) {
         if (!finite(mesh.vertices[i])) fail("vertex " + std::to_string(i) + " is not a finite number");
         if (!mesh.normals.empty() && !finite(mesh.normals[i]))
             fail("the normal of vertex " + std::to_string(i) + " is not a finite number");
+        if (!mesh.texcoords.empty() && !(std::isfinite(mesh.texcoords[i].x) && std::isfinite(mesh.texcoords[i].y)))
+            fail("the texture coordinate of vertex " + std::to_string(i) + " is not a finite number");
     }
     // Degenerate triangles have no inside and no normal: dropped.
     std::vector<uint32_t> kept;

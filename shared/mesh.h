@@ -15,11 +15,23 @@ struct Mesh {
     std::string name;                 // for messages: "lens.obj" or "glass.gltf: mesh 0 primitive 1"
     std::vector<glm::vec3> vertices;  // object space
     std::vector<glm::vec3> normals;   // one per vertex (smooth shading), or empty: the faces' own
+    std::vector<glm::vec2> texcoords; // one per vertex, glTF's convention ((0, 0): the image's top-left), or empty
     std::vector<uint32_t> indices;    // three per triangle, counter-clockwise seen from outside
     // Set by checkMesh:
     size_t openEdges = 0;    // edges not shared by exactly two triangles of opposite orientation
     size_t degenerate = 0;   // triangles dropped: zero area, or a repeated vertex
     glm::vec3 lo{0}, hi{0};  // bounding box of the vertices the triangles use
+};
+
+// A base colour texture (chapter 12), decoded to linear RGB: a mesh file's
+// image with its sampler's wrap modes and magnification filter.
+enum class TextureWrap { Repeat, Clamp, Mirror };
+struct Texture {
+    std::string name;                 // for messages: "board.glb: image 0"
+    uint32_t width = 0, height = 0;
+    std::vector<glm::vec3> texels;    // row-major, top row first, linear (decoded from sRGB)
+    TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
+    bool nearest = false;             // magnification NEAREST: no bilinear filter
 };
 
 // An icosahedron subdivided `level` times, vertices on the unit sphere (each
@@ -28,7 +40,7 @@ Mesh icosphere(int level);
 
 // What every loaded mesh goes through (chapter 12). Throws InputError naming
 // `mesh.name` for an index out of range, a NaN or infinite vertex or
-// normal, or no triangle left; drops degenerate triangles (counted in
+// normal or texture coordinate, or no triangle left; drops degenerate triangles (counted in
 // `degenerate`); counts open edges. Edges are matched by vertex position,
 // not index: a file may repeat a vertex where its normals differ.
 void checkMesh(Mesh& mesh);

@@ -1,6 +1,9 @@
 #include "mesh_file.h"
 
+#include "display.h"
 #include "files.h"
+
+#include <stb_image.h>
 
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
@@ -9,8 +12,11 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
+#include <tuple>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -26,10 +32,44 @@ std::string lowerExtension(const std::string& path) {
     return e;
 }
 
+// [region decode_texture]
+// Base colour textures are sRGB-encoded (glTF 2.0, 3.9.2): decoded here to
+// linear values once, so that filtering and shading work in linear light.
+constexpr int kMaxTextureSide = 8192;
+Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width, int height) {
+    Texture t{.name = name, .width = uint32_t(width), .height = uint32_t(height)};
+    t.texels.resize(size_t(width) * height);
+    for (size_t i = 0; i < t.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) t.texels[i][c] = float(srgbToLinear(rgba[4 * i + c] / 255.0));
+    return t;
+}
+// [end]
+
+// An image file or the bytes of one, decoded to 8-bit RGBA; "" when it is fine.
+std::string decodeImage(const unsigned char* bytes, int size, int& width, int& height, std::vector<unsigned char>& rgba) {
+    int channels = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
+        return stbi_failure_reason() ? stbi_failure_reason() : "not an image stb_image reads";
+    if (width > kMaxTextureSide || height > kMaxTextureSide)
+        return std::to_string(width) + "x" + std::to_string(height) + " texels, more than " +
+               std::to_string(kMaxTextureSide) + " a side";
+    unsigned char* data = stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+    if (!data) return stbi_failure_reason() ? stbi_failure_reason() : "a truncated image";
+    rgba.assign(data, data + size_t(width) * height * 4);
+    stbi_image_free(data);
+    return "";
+}
+
+std::vector<unsigned char> readImageFile(const std::string& meshPath, const std::string& image) {
+    std::ifstream in(image, std::ios::binary);
+    if (!std::filesystem::is_regular_file(image) || !in) fail(meshPath, "cannot read the image " + image);
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+}
+
 // ---- OBJ -----------------------------------------------------------------
 
-// One mesh per material the faces use; vertices that share position and
-// normal indices are one vertex.
+// One mesh per material the faces use; vertices that share position,
+// normal and texture coordinate indices are one vertex.
 MeshFile loadObj(const std::string& path) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -49,11 +89,23 @@ MeshFile loadObj(const std::string& path) {
         f.transmission = std::clamp(1.0 - m.dissolve, 0.0, 1.0);
         f.ior = m.ior >= 1 ? m.ior : 1.5;
         if (m.illum == 3 || m.illum == 5) f.metallic = 1, f.baseColor = {m.specular[0], m.specular[1], m.specular[2]};
+        if (!m.diffuse_texname.empty()) {  // map_Kd: an image file beside the .mtl
+            std::string image = (std::filesystem::path(config.mtl_search_path) / m.diffuse_texname).string();
+            std::vector<unsigned char> bytes = readImageFile(path, image), rgba;
+            int w = 0, h = 0;
+            std::string why = decodeImage(bytes.data(), int(bytes.size()), w, h, rgba);
+            if (!why.empty()) fail(path, "material " + m.name + ": map_Kd " + image + ": " + why);
+            Texture t = decodeTexture(image, rgba.data(), w, h);
+            if (m.diffuse_texopt.clamp) t.wrapU = t.wrapV = TextureWrap::Clamp;
+            f.baseColorTexture = int(file.textures.size());
+            file.textures.push_back(std::move(t));
+        }
         file.materials.push_back(f);
     }
     std::map<int, uint32_t> meshOfMaterial;
-    std::vector<std::map<std::pair<int, int>, uint32_t>> vertexOf;
+    std::vector<std::map<std::tuple<int, int, int>, uint32_t>> vertexOf;
     auto vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+    auto texcoordCount = attrib.texcoords.size() / 2;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
         size_t offset = 0;
         for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
@@ -77,13 +129,22 @@ MeshFile loadObj(const std::string& path) {
                 if (normal >= 0 && size_t(normal) >= normalCount)
                     fail(path, "face " + std::to_string(f) + " uses normal " + std::to_string(normal + 1) +
                                    ", but there are " + std::to_string(normalCount) + " normals");
-                auto [v, isNew] = vertexOf[it->second].try_emplace({index.vertex_index, normal}, uint32_t(mesh.vertices.size()));
+                int texcoord = index.texcoord_index;
+                if (texcoord >= 0 && size_t(texcoord) >= texcoordCount)
+                    fail(path, "face " + std::to_string(f) + " uses texture coordinate " + std::to_string(texcoord + 1) +
+                                   ", but there are " + std::to_string(texcoordCount));
+                auto [v, isNew] = vertexOf[it->second].try_emplace({index.vertex_index, normal, texcoord},
+                                                                   uint32_t(mesh.vertices.size()));
                 if (isNew) {
                     const float* p = &attrib.vertices[3 * size_t(index.vertex_index)];
                     mesh.vertices.push_back({p[0], p[1], p[2]});
                     if (normal >= 0) {
                         const float* n = &attrib.normals[3 * size_t(normal)];
                         mesh.normals.push_back({n[0], n[1], n[2]});
+                    }
+                    if (texcoord >= 0) {  // OBJ's v points up the image, glTF's down
+                        const float* uv = &attrib.texcoords[2 * size_t(texcoord)];
+                        mesh.texcoords.push_back({uv[0], 1.0f - uv[1]});
                     }
                 }
                 mesh.indices.push_back(v->second);
@@ -93,6 +154,7 @@ MeshFile loadObj(const std::string& path) {
     }
     for (Mesh& mesh : file.meshes) {
         if (mesh.normals.size() != mesh.vertices.size()) mesh.normals.clear();  // some faces without: flat
+        if (mesh.texcoords.size() != mesh.vertices.size()) mesh.texcoords.clear();  // some without: untextured
         checkMesh(mesh);
     }
     if (file.meshes.empty()) fail(path, "no faces: an empty mesh");
@@ -141,6 +203,27 @@ struct AccessorReader {
         return out;
     }
 
+    // TEXCOORD_n: floats, or unsigned bytes or shorts normalized to [0, 1] (glTF 3.7.2.1).
+    std::vector<glm::vec2> vec2s(int index, const std::string& what) const {
+        if (index < 0 || size_t(index) >= model.accessors.size()) fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = model.accessors[index];
+        int type = a.componentType;
+        size_t size = type == TINYGLTF_COMPONENT_TYPE_FLOAT ? 4 : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : 0;
+        if (size == 0 || (size < 4 && !a.normalized)) fail(path, what + ": texture coordinates must be floats or normalized unsigned bytes or shorts");
+        size_t count, stride;
+        const unsigned char* p = bytes(index, TINYGLTF_TYPE_VEC2, size, count, stride, what);
+        std::vector<glm::vec2> out(count);
+        for (size_t i = 0; i < count; ++i)
+            for (int c = 0; c < 2; ++c) {
+                const unsigned char* e = p + i * stride + c * size;
+                if (size == 4) std::memcpy(&out[i][c], e, 4);
+                else if (size == 2) out[i][c] = float(uint32_t(e[0]) | uint32_t(e[1]) << 8) / 65535.0f;
+                else out[i][c] = float(e[0]) / 255.0f;
+            }
+        return out;
+    }
+
     std::vector<uint32_t> indices(int index, const std::string& what) const {
         if (index < 0 || size_t(index) >= model.accessors.size()) fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
         int type = model.accessors[index].componentType;
@@ -180,15 +263,32 @@ glm::dmat4 nodeTransform(const tinygltf::Node& node) {
     return m;
 }
 
-// Images are not needed (base colour textures are not read): no decoding.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// tinygltf hands over each image's bytes (from a buffer view, a data URI or
+// a file beside the .gltf); stb_image decodes them, as it does the sky.
+bool decodeGltfImage(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
+                     const unsigned char* bytes, int size, void*) {
+    std::string why = decodeImage(bytes, size, image->width, image->height, image->image);
+    if (!why.empty()) {
+        if (error) *error = "image " + std::to_string(index) + ": " + why;
+        return false;
+    }
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     return true;
+}
+
+// A sampler's wrap mode (glTF 3.9.4's GL enums).
+TextureWrap wrapOf(int mode) {
+    return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::Clamp
+           : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::Mirror
+                                                           : TextureWrap::Repeat;
 }
 
 MeshFile loadGltf(const std::string& path, bool binary) {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skipImage, nullptr);
+    loader.SetImageLoader(decodeGltfImage, nullptr);
     std::string error, warning;
     bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                      : loader.LoadASCIIFromFile(&model, &error, &warning, path);
@@ -198,6 +298,32 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         fail(path, "not a glTF file tinygltf reads (" + (error.empty() ? std::string("no reason given") : error) + ")");
     }
     MeshFile file;
+    // [region gltf_texture]
+    // A glTF texture is an image and a sampler; each one a material uses
+    // becomes one decoded Texture, however many materials share it.
+    std::map<int, int> textureOf;
+    auto baseColorTexture = [&](int index, const std::string& material) -> int {
+        if (index < 0) return -1;
+        auto [it, added] = textureOf.try_emplace(index, int(file.textures.size()));
+        if (!added) return it->second;
+        std::string what = "material " + material + ": base colour texture " + std::to_string(index);
+        if (size_t(index) >= model.textures.size()) fail(path, what + " does not exist");
+        const tinygltf::Texture& texture = model.textures[index];
+        if (texture.source < 0 || size_t(texture.source) >= model.images.size()) fail(path, what + " has no image");
+        const tinygltf::Image& image = model.images[texture.source];
+        if (image.image.size() != size_t(image.width) * image.height * 4) fail(path, what + ": its image was not decoded");
+        Texture t = decodeTexture(path + ": image " + std::to_string(texture.source), image.image.data(), image.width,
+                                  image.height);
+        if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
+            const tinygltf::Sampler& sampler = model.samplers[texture.sampler];
+            t.wrapU = wrapOf(sampler.wrapS);
+            t.wrapV = wrapOf(sampler.wrapT);
+            t.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        file.textures.push_back(std::move(t));
+        return it->second;
+    };
+    // [end]
     for (const tinygltf::Material& m : model.materials) {
         const auto& pbr = m.pbrMetallicRoughness;
         FileMaterial f{.name = m.name.empty() ? "material " + std::to_string(file.materials.size()) : m.name};
@@ -206,6 +332,7 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         f.roughness = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
         f.transmission = std::clamp(extensionNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0), 0.0, 1.0);
         f.ior = std::clamp(extensionNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), 1.0, 10.0);
+        f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, f.name);
         file.materials.push_back(f);
     }
     AccessorReader read{model, path};
@@ -226,6 +353,16 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         mesh.vertices = read.vec3s(position->second, what + " POSITION");
         auto normal = primitive.attributes.find("NORMAL");
         if (normal != primitive.attributes.end()) mesh.normals = read.vec3s(normal->second, what + " NORMAL");
+        // The texture coordinates the material's base colour texture names (TEXCOORD_0 by default).
+        int material = primitive.material, set = 0;
+        if (material >= 0 && size_t(material) < model.materials.size())
+            set = model.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord;
+        auto texcoord = primitive.attributes.find("TEXCOORD_" + std::to_string(set));
+        if (texcoord != primitive.attributes.end()) {
+            mesh.texcoords = read.vec2s(texcoord->second, what + " TEXCOORD_" + std::to_string(set));
+            if (mesh.texcoords.size() != mesh.vertices.size()) fail(path, what + ": TEXCOORD_" + std::to_string(set) +
+                                                                      " and POSITION differ in count");
+        }
         if (primitive.indices >= 0) {
             mesh.indices = read.indices(primitive.indices, what + " indices");
         } else {  // not indexed: every three vertices a triangle

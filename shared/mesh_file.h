@@ -14,14 +14,15 @@
 namespace rg {
 
 // A material as a glTF file describes it (an OBJ's .mtl is translated to
-// the same terms): metallic-roughness plus KHR_materials_transmission and
-// KHR_materials_ior.
+// the same terms): metallic-roughness with its base colour texture, plus
+// KHR_materials_transmission and KHR_materials_ior.
 struct FileMaterial {
     std::string name;
     glm::dvec3 baseColor{1.0};  // linear
     double metallic = 1, roughness = 1;  // glTF's defaults
     double transmission = 0;    // KHR_materials_transmission
     double ior = 1.5;           // KHR_materials_ior
+    int baseColorTexture = -1;  // index into MeshFile::textures (times baseColor), -1: none
 };
 
 struct MeshPart {
@@ -33,13 +34,15 @@ struct MeshPart {
 struct MeshFile {
     std::vector<Mesh> meshes;  // each checked (checkMesh); one per glTF primitive, however often placed
     std::vector<FileMaterial> materials;
+    std::vector<Texture> textures;  // the base colour textures the materials use, decoded
     std::vector<MeshPart> parts;
     size_t skippedPrimitives = 0;  // points and lines: not surfaces
 };
 
 // Throws InputError "<path>: <why>" for a file that is missing, not one of
 // the formats, malformed (accessors outside their buffers, sparse or
-// quantized positions) or holding a mesh checkMesh refuses.
+// quantized positions), naming an image stb_image cannot decode, or holding
+// a mesh checkMesh refuses.
 MeshFile loadMeshFile(const std::string& path);
 
 }  // namespace rg

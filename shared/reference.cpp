@@ -126,6 +126,7 @@ ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
         MeshData& m = meshes_.emplace_back();
         for (const glm::vec3& v : mesh->vertices) m.vertices.push_back(v), m.size = std::max(m.size, maxMagnitude(v));
         for (const glm::vec3& n : mesh->normals) m.normals.push_back(n);
+        for (const glm::vec2& uv : mesh->texcoords) m.texcoords.push_back(uv);
         m.indices = mesh->indices;
         std::vector<BoxItem> items;
         for (uint32_t t = 0; t < m.indices.size() / 3; ++t) {
@@ -162,7 +163,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     glm::dvec3 o = glm::dvec3(inv * glm::dvec4(origin, 1.0));
     glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));  // t is the same in both spaces
     double t = -1;
-    glm::dvec3 localNormal, localShadingNormal(0);
+    glm::dvec3 localNormal, localShadingNormal(0), tint(1);
     bool front = true;
     if (obj.type == ShapeType::Sphere) {
         double t0, t1;
@@ -181,6 +182,10 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
         localNormal = glm::cross(mesh.vertices[v[1]] - mesh.vertices[v[0]], mesh.vertices[v[2]] - mesh.vertices[v[0]]);
         if (!mesh.normals.empty())
             localShadingNormal = h.weights.x * mesh.normals[v[0]] + h.weights.y * mesh.normals[v[1]] + h.weights.z * mesh.normals[v[2]];
+        int texture = scene_.materials[obj.material].texture;
+        if (texture >= 0 && !mesh.texcoords.empty())
+            tint = sampleTexture(*scene_.textures[texture], h.weights.x * mesh.texcoords[v[0]] +
+                                                              h.weights.y * mesh.texcoords[v[1]] + h.weights.z * mesh.texcoords[v[2]]);
     } else {
         if (d.y == 0) return;  // parallel to the plane
         t = -o.y / d.y;
@@ -197,6 +202,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin, const gl
     glm::dvec3 shading = glm::transpose(glm::dmat3(inv)) * localShadingNormal;
     if (glm::dot(shading, shading) > 0) best.shading = glm::normalize(shading);
     best.frontFace = obj.type == ShapeType::Quad ? glm::dot(best.normal, direction) < 0 : front;
+    best.tint = tint;
     best.error = kRounding * (maxMagnitude(origin) + std::abs(t) * maxMagnitude(direction) + objectSize_[i]);
 }
 
@@ -300,6 +306,34 @@ glm::dvec3 ReferenceRenderer::sky(const glm::dvec3& dir) const {
     long x0 = long(fx0), y0 = long(fy0);
     return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx),
                     fy);
+}
+
+glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture, const glm::dvec2& uv) {
+    auto wrap = [](double u, TextureWrap mode) {  // into [0, 1]
+        if (mode == TextureWrap::Clamp) return std::clamp(u, 0.0, 1.0);
+        if (mode == TextureWrap::Mirror) return 1 - std::abs(u - 2 * std::floor(u / 2) - 1);
+        return u - std::floor(u);
+    };
+    auto texel = [&](long x, long y) {
+        long w = texture.width, h = texture.height;
+        x = texture.wrapU == TextureWrap::Repeat ? ((x % w) + w) % w : std::clamp(x, 0L, w - 1);
+        y = texture.wrapV == TextureWrap::Repeat ? ((y % h) + h) % h : std::clamp(y, 0L, h - 1);
+        return glm::dvec3(texture.texels[size_t(y) * w + x]);
+    };
+    double x = wrap(uv.x, texture.wrapU) * texture.width, y = wrap(uv.y, texture.wrapV) * texture.height;
+    if (texture.nearest) return texel(long(std::floor(x)), long(std::floor(y)));
+    x -= 0.5;
+    y -= 0.5;
+    double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+    long ix = long(x0), iy = long(y0);
+    return glm::mix(glm::mix(texel(ix, iy), texel(ix + 1, iy), fx), glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx), fy);
+}
+
+Material ReferenceRenderer::hitMaterial(const ReferenceHit& hit) const {
+    Material m = scene_.materials[scene_.objects[hit.object].material];
+    m.ka *= hit.tint;
+    m.kd *= hit.tint;
+    return m;
 }
 
 void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
@@ -422,7 +456,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     glm::dvec3 n, ns;  // toward the ray's origin: geometric, shading
     facingNormals(hit, direction, n, ns);
     if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
-    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+    const Material m = hitMaterial(hit);  // a mesh's texture tints it (chapter 12)
     glm::dvec3 p = origin + hit.t * direction;
     glm::dvec3 v = -direction;
     if (settings.stage <= ReferenceStage::Specular) return localShading(settings, m, p, hit.error, n, n, v);
@@ -465,7 +499,7 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     // estimated with many stratified samples from this code's own generator.
     ReferenceHit hit = trace(origin, direction, eyeTmin(), 1e300);
     if (hit.t < 0) return sky(direction);
-    const Material& m = scene_.materials[scene_.objects[hit.object].material];
+    const Material m = hitMaterial(hit);  // a mesh's texture tints it (chapter 12)
     glm::dvec3 n, ns;
     facingNormals(hit, direction, n, ns);
     if (m.roughness <= 0 || settings.maxDepth == 0) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));

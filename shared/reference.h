@@ -28,6 +28,7 @@ struct ReferenceHit {
     uint32_t object = 0;
     bool frontFace = true;
     double error = 0;       // how far origin + t * direction may lie from the surface (its rounding)
+    glm::dvec3 tint{1};     // a textured mesh's base colour texture at the hit (chapter 12), else 1
 };
 
 class ReferenceRenderer {
@@ -40,6 +41,11 @@ public:
     // The same by testing every object (what the BVH must agree with: tests).
     ReferenceHit traceLinear(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
     glm::dvec3 sky(const glm::dvec3& direction) const;
+    // A base colour texture at a texture coordinate: the sampler's wrap, then
+    // bilinear (or nearest) filtering, written again in double.
+    static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv);
+    // The material of a hit, its ambient and diffuse colours times hit.tint.
+    Material hitMaterial(const ReferenceHit& hit) const;
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
                    glm::dvec3& direction) const;
     // Chapter 11 also returns the standard error of its rough-reflection
@@ -89,6 +95,7 @@ public:
     // A mesh in double, with its triangles' tree (object space).
     struct MeshData {
         std::vector<glm::dvec3> vertices, normals;
+        std::vector<glm::dvec2> texcoords;
         std::vector<uint32_t> indices;
         Bvh bvh;
         double size = 0;  // the largest vertex coordinate's magnitude

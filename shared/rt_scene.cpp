@@ -66,18 +66,34 @@ float worldRadius(const Object& o) {
 }
 }  // namespace
 
-gpu::GpuMaterial toGpuMaterial(const Material& m) {
+gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std::vector<uint32_t>& firstTexel) {
+    glm::uvec4 texture(0);
+    if (m.texture >= 0) {  // chapter 12: where its texels are, its size, and how it wraps and filters
+        const Texture& t = *scene.textures[m.texture];
+        auto wrap = [](TextureWrap w) {
+            return w == TextureWrap::Clamp ? TEXTURE_WRAP_CLAMP : w == TextureWrap::Mirror ? TEXTURE_WRAP_MIRROR : TEXTURE_WRAP_REPEAT;
+        };
+        texture = {firstTexel[m.texture], t.width, t.height,
+                   wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT | (t.nearest ? TEXTURE_NEAREST : 0u)};
+    }
     return {v4(m.ka), v4(m.kd), v4(m.ks),
             glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
-            glm::vec4(float(m.f0), float(m.roughness), 0, 0)};
+            glm::vec4(float(m.f0), float(m.roughness), 0, 0), texture};
 }
 
 // The scene's buffers and structures against the device's limits, before
-// they are made: the largest storage buffers (objects, the sky's texels)
-// and the instance and box counts of the acceleration structures.
+// they are made: the largest storage buffers (objects, the sky's and the
+// textures' texels) and the instance and box counts of the acceleration
+// structures.
 void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky, size_t grouped, size_t instanced) {
     std::string name;
     double limit = storageBufferLimit(gpu, &name);
+    double textureBytes = 0;
+    for (const auto& t : scene.textures) textureBytes += double(t->width) * t->height * sizeof(glm::vec4);
+    if (textureBytes > limit)
+        throw InputError(scene.path + ": the meshes' " + std::to_string(scene.textures.size()) + " textures need " +
+                         mebibytes(textureBytes) + " in one storage buffer, more than this device's " + name + " (" +
+                         mebibytes(limit) + ")");
     double skyBytes = double(sky.rgba.size()) * sizeof(float);
     if (skyBytes > limit) {
         double texels = std::floor(limit / 16), scale = std::sqrt(texels / (double(sky.width) * sky.height));
@@ -155,20 +171,26 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     for (uint32_t i : rt.group.objects)  // the group's boxes, in their order: the real spheres
         objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE, scene.objects[i].material,
                            worldRadius(scene.objects[i]), 0});
+    std::vector<glm::vec4> texels;  // chapter 12: every texture's, one after another
+    for (const auto& t : scene.textures) {
+        rt.firstTexel.push_back(uint32_t(texels.size()));
+        for (const glm::vec3& c : t->texels) texels.emplace_back(c, 1.0f);
+    }
     std::vector<gpu::GpuMaterial> materials;
-    for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m));
+    for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m, scene, rt.firstTexel));
     std::vector<gpu::GpuLight> lights;
     for (const auto& l : scene.lights) lights.push_back({v4(l.position, 1), v4(l.intensity)});
     rt.objects = storage(gpu, deletion, objects);
     rt.materials = storage(gpu, deletion, materials);
     rt.lights = storage(gpu, deletion, lights);
     rt.sky = storage(gpu, deletion, sky.rgba);
+    rt.textures = storage(gpu, deletion, texels);
     rt.rayCount = createRayCounts(gpu, deletion, rt.width, rt.height);
     // [region mesh_table]
     auto address = [](const Buffer& b) { return glm::uvec2(uint32_t(b.address), uint32_t(b.address >> 32)); };
     std::vector<gpu::GpuMesh> meshes;  // chapter 12: one entry per mesh, its buffers by address
     for (const MeshBlas& m : rt.shapes.meshes)
-        meshes.push_back({address(m.vertices), address(m.normals), address(m.indices), {0, 0}});
+        meshes.push_back({address(m.vertices), address(m.normals), address(m.indices), address(m.texcoords)});
     rt.meshes = storage(gpu, deletion, meshes);  // without meshes, one unused entry: a binding needs a buffer
     // [end]
 
@@ -184,6 +206,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
         {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_RAYGEN_BIT_KHR},
         {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+        {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
     });
     // [region tlas_descriptor]
     VkDescriptorSet set = rt.descriptors.set;
@@ -197,6 +220,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     writeBuffer(gpu, set, RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.sky);
     writeBuffer(gpu, set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
     writeBuffer(gpu, set, RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.meshes);
+    writeBuffer(gpu, set, RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.textures);
     return rt;
 }
 

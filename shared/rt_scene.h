@@ -29,13 +29,16 @@ struct RtScene {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     Tlas tlas;
     Buffer camera, objects, materials, lights, sky, rayCount;
-    Buffer meshes;  // gpu::GpuMesh per mesh (chapter 12)
+    Buffer meshes;    // gpu::GpuMesh per mesh (chapter 12)
+    Buffer textures;  // the meshes' base colour textures' texels (chapter 12)
+    std::vector<uint32_t> firstTexel;  // where each of Scene::textures starts in `textures`
     DescriptorSet descriptors;
     uint32_t width = 0, height = 0;
 };
 
-// A material as the shaders read it (host_device.h).
-gpu::GpuMaterial toGpuMaterial(const Material& m);
+// A material as the shaders read it (host_device.h); `firstTexel`: where
+// each of the scene's textures starts in the texel buffer.
+gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std::vector<uint32_t>& firstTexel);
 
 // How the scene goes into acceleration structures (chapter 03; the command
 // line's --layout, --file-order and --sphere-mesh).

@@ -298,7 +298,9 @@ std::string findInput(const Reader& r, const std::string& scenePath, const std::
 // colour is diffuse where the surface is neither metal nor glass; metal is
 // an untinted mirror of that strength; the highlight narrows as the
 // roughness falls (Blinn-Phong's exponent 2 / alpha^2 - 2 for GGX's alpha =
-// roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2.
+// roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2. A base
+// colour texture multiplies ka and kd where a ray meets the mesh (its
+// caller sets Material::texture).
 Material materialFromFile(const FileMaterial& f) {
     Material m;  // named by the caller, after the file
     double dielectric = (1 - f.metallic) * (1 - f.transmission);
@@ -356,10 +358,13 @@ private:
             throw InputError(path_ + ": " + key + ".file: " + e.what());
         }
         Loaded l{.firstMesh = uint32_t(scene_.meshes.size()), .parts = mf.parts};
+        int firstTexture = int(scene_.textures.size());
+        for (Texture& t : mf.textures) scene_.textures.push_back(std::make_shared<const Texture>(std::move(t)));
         for (const FileMaterial& f : mf.materials) {
             l.materials.push_back(uint32_t(scene_.materials.size()));
             scene_.materials.push_back(materialFromFile(f));
             scene_.materials.back().name = std::filesystem::path(file).filename().string() + ": " + f.name;
+            if (f.baseColorTexture >= 0) scene_.materials.back().texture = firstTexture + f.baseColorTexture;
         }
         for (Mesh& m : mf.meshes) {
             if (m.degenerate > 0)
@@ -446,9 +451,12 @@ Scene loadScene(const std::string& path) {
         }
     }
 
-    if (!j.contains("materials") || !j["materials"].is_object() || j["materials"].empty())
+    // A scene whose meshes bring their own materials may leave them out.
+    const json noMaterials = json::object();
+    if (j.contains("materials") && (!j["materials"].is_object() || j["materials"].empty()))
         r.fail("materials", "must be an object with at least one named material");
-    for (auto it = j["materials"].begin(); it != j["materials"].end(); ++it) {
+    const json& materials = j.contains("materials") ? j["materials"] : noMaterials;
+    for (auto it = materials.begin(); it != materials.end(); ++it) {
         std::string key = "materials." + it.key();
         const json& m = it.value();
         r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness"});

@@ -43,6 +43,7 @@ struct Material {
     double ior = 1.517;            // index of refraction (ch 09-10)
     double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
     double roughness = 0;          // lobe width for rough reflection (ch 11)
+    int texture = -1;              // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
 };
 
 enum class ShapeType { Sphere, Quad, Mesh };
@@ -73,6 +74,7 @@ struct Scene {
     std::vector<Object> objects;
     // Chapter 12: each mesh once, however many objects place it (one BLAS each).
     std::vector<std::shared_ptr<const Mesh>> meshes;
+    std::vector<std::shared_ptr<const Texture>> textures;  // the meshes' base colour textures
     // Camera rays ignore hits closer to the eye than this: 0 unless the eye
     // lies on a surface (eyeTmin in scene.cpp; docs/scene-format.md's rule 1).
     double eyeTmin = 0;

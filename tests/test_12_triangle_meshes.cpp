@@ -6,7 +6,9 @@
 
 #include "files.h"
 #include "mesh.h"
+#include "display.h"
 #include "mesh_file.h"
+#include "output.h"
 #include "reference.h"
 #include "scene.h"
 
@@ -241,6 +243,150 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_NEAR(m.f0, std::pow(0.33 / 2.33, 2), 1e-12);
 }
 
+// ---- Textures -------------------------------------------------------------------
+
+// A 2 x 2 image, as a viewer shows it: red, green on top; blue, white below.
+const glm::dvec3 kQuadrants[2][2] = {{{1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 1, 1}}};
+void writeQuadrantsPng(const std::string& path) {
+    rg::FloatImage image{2, 2, std::vector<float>(16, 1.0f)};
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x)
+            for (int c = 0; c < 3; ++c) image.rgba[4 * (2 * y + x) + c] = float(kQuadrants[y][x][c]);
+    rg::writePng(path, image);
+}
+
+// A glTF square [-1, 1] x {0} x [-1, 1] facing up, texture coordinates from
+// (lo, lo) at its -x -z corner to (hi, hi) at +x +z, the base colour
+// texture `png` through `sampler`.
+void writeTexturedSquare(const std::string& dir, const std::string& name, float lo, float hi, const nlohmann::json& sampler) {
+    struct Data {
+        float xyz[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+        float uv[8];
+        uint32_t indices[6] = {0, 2, 1, 0, 3, 2};
+    } data{.uv = {lo, lo, hi, lo, hi, hi, lo, hi}};
+    writeText(dir + "/" + name + ".bin", std::string(reinterpret_cast<const char*>(&data), sizeof data));
+    nlohmann::json j = {
+        {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", {0}}}}}, {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+        {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}}}}},
+        {"textures", {{{"source", 0}, {"sampler", 0}}}},
+        {"images", {{{"uri", "quadrants.png"}}}},
+        {"samplers", {sampler}},
+        {"buffers", {{{"uri", name + ".bin"}, {"byteLength", sizeof data}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+                         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                       {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}}};
+    writeText(dir + "/" + name + ".gltf", j.dump());
+}
+
+TEST(Textures, GltfBaseColourTextureIsReadAndDecoded) {
+    rg::MeshFile file = rg::loadMeshFile(meshDir() + "/tiles.glb");
+    ASSERT_EQ(file.textures.size(), 1u);
+    const rg::Texture& t = file.textures[0];
+    EXPECT_EQ(t.width, 64u);
+    EXPECT_EQ(t.height, 64u);
+    EXPECT_EQ(t.wrapU, rg::TextureWrap::Repeat);
+    EXPECT_FALSE(t.nearest);
+    ASSERT_EQ(file.materials.size(), 1u);
+    EXPECT_EQ(file.materials[0].baseColorTexture, 0);
+    ASSERT_EQ(file.meshes[0].texcoords.size(), 4u);
+    EXPECT_EQ(file.meshes[0].texcoords[2], glm::vec2(10, 10));
+    // make_meshes' tile: grout at the corner, then light top-left, dark top-right,
+    // decoded from sRGB (the top row first, as the image is stored).
+    EXPECT_NEAR(t.texels[0].r, rg::srgbToLinear(140 / 255.0), 1e-6);
+    EXPECT_NEAR(t.texels[8 * 64 + 8].r, rg::srgbToLinear(222 / 255.0), 1e-6);
+    EXPECT_NEAR(t.texels[8 * 64 + 40].b, rg::srgbToLinear(88 / 255.0), 1e-6);
+    // The scene gives the material the texture; a scene material drops it.
+    rg::Scene scene = rg::loadScene(RG_SOURCE_DIR "/assets/scenes/meshes.json");
+    ASSERT_EQ(scene.textures.size(), 1u);
+    int textured = 0;
+    for (const rg::Material& m : scene.materials) textured += m.texture == 0;
+    EXPECT_EQ(textured, 1);
+}
+
+TEST(Textures, ObjMapKdIsReadWithItsTextureCoordinatesFlipped) {
+    std::string dir = rgtest::outputDir("12_obj_texture");
+    writeQuadrantsPng(dir + "/quadrants.png");
+    writeText(dir + "/square.mtl", "newmtl paint\nKd 1 1 1\nmap_Kd quadrants.png\n");
+    writeText(dir + "/square.obj", "mtllib square.mtl\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+                                   "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl paint\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    rg::MeshFile file = rg::loadMeshFile(dir + "/square.obj");
+    ASSERT_EQ(file.textures.size(), 1u);
+    EXPECT_EQ(file.materials[0].baseColorTexture, 0);
+    EXPECT_EQ(file.textures[0].texels[0], glm::vec3(1, 0, 0));  // the image's top-left texel: red
+    const rg::Mesh& m = file.meshes[0];
+    ASSERT_EQ(m.texcoords.size(), 4u);
+    // OBJ's (0, 0) is the image's bottom-left corner; glTF's (and RayGlass's) v points down.
+    EXPECT_EQ(m.texcoords[0], glm::vec2(0, 1));
+    EXPECT_EQ(m.texcoords[2], glm::vec2(1, 0));
+    // One clear line for an image that is not one.
+    writeText(dir + "/broken.png", "not a png");
+    writeText(dir + "/broken.mtl", "newmtl paint\nmap_Kd broken.png\n");
+    writeText(dir + "/broken.obj", "mtllib broken.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n");
+    std::string message = inputError([&] { rg::loadMeshFile(dir + "/broken.obj"); });
+    EXPECT_NE(message.find("map_Kd " + dir + "/broken.png: "), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(Textures, ReferenceFiltersAndWrapsAsGltfSays) {
+    rg::Texture t{.name = "t", .width = 2, .height = 2};
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) t.texels.push_back(glm::vec3(kQuadrants[y][x]));
+    auto at = [&](double u, double v) { return rg::ReferenceRenderer::sampleTexture(t, {u, v}); };
+    EXPECT_EQ(at(0.25, 0.25), glm::dvec3(1, 0, 0));  // texel centres: the texels themselves
+    EXPECT_EQ(at(0.75, 0.75), glm::dvec3(1, 1, 1));
+    EXPECT_EQ(at(0.5, 0.25), glm::dvec3(0.5, 0.5, 0));  // half way between red and green
+    EXPECT_EQ(at(1.25, -0.75), at(0.25, 0.25));  // repeat
+    t.wrapU = rg::TextureWrap::Clamp;
+    EXPECT_EQ(at(-3, 0.25), glm::dvec3(1, 0, 0));  // the edge texel
+    EXPECT_EQ(at(0.0, 0.25), glm::dvec3(1, 0, 0));  // no wrap-around blend at the edge
+    t.wrapU = rg::TextureWrap::Mirror;
+    EXPECT_EQ(at(1.25, 0.25), at(0.75, 0.25));  // the next copy mirrored
+    EXPECT_EQ(at(-0.25, 0.25), at(0.25, 0.25));
+    t.nearest = true;
+    EXPECT_EQ(at(0.49, 0.26), glm::dvec3(1, 0, 0));
+    EXPECT_EQ(at(0.51, 0.26), glm::dvec3(0, 1, 0));
+}
+
+// The GPU against the texture's own definition, then against the
+// reference: three squares seen from above, lit by ambient light alone so
+// that each pixel is its texture's value.
+TEST(Textures, GpuShowsTheImageTheRightWayUpAndWrapsLikeTheReference) {
+    std::string dir = rgtest::outputDir("12_textures");
+    writeQuadrantsPng(dir + "/quadrants.png");
+    writeTexturedSquare(dir, "plain", 0, 1, {{"magFilter", 9729}});
+    writeTexturedSquare(dir, "wraps", -1, 2, {{"magFilter", 9729}, {"wrapS", 33648}, {"wrapT", 33071}});
+    writeTexturedSquare(dir, "nearest", 0, 3, {{"magFilter", 9728}});
+    writeText(dir + "/textures.json", R"({"camera": {"position": [0, 6, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov_y_deg": 40},
+        "sky": {"top": 0, "horizon": 0, "bottom": 0}, "ambient": 1,
+        "objects": [
+          {"type": "mesh", "file": "plain.gltf", "transform": {"translate": [-2.2, 0, 0]}},
+          {"type": "mesh", "file": "wraps.gltf"},
+          {"type": "mesh", "file": "nearest.gltf", "transform": {"translate": [2.2, 0, 0]}}]})");
+    rgtest::expectMatchesReference(RG_EXE_12, dir + "/textures.json", "12_textures_reference");
+    // The plain square shows the image as it is: red top-left, white bottom-right.
+    rgtest::RunResult run = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", dir + "/textures.json",
+                                                    "--width", "320", "--height", "180", "--frames", "1", "--output",
+                                                    dir + "/top_view.pfm"});
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    rg::FloatImage image = rg::readPfm(dir + "/top_view.pfm");
+    ASSERT_EQ(image.width, 320u);
+    for (int qy = 0; qy < 2; ++qy)
+        for (int qx = 0; qx < 2; ++qx) {
+            glm::dvec3 point(-2.2 - 0.5 + qx, 0, -0.5 + qy);  // the quadrant's centre on the square
+            // Its pixel: where the camera ray toward it lands (the reference's camera).
+            double tanHalf = std::tan(20 * kPi / 180), aspect = 320.0 / 180;
+            double sx = point.x / 6 / (tanHalf * aspect), sy = -point.z / 6 / tanHalf;
+            uint32_t px = uint32_t((sx + 1) / 2 * 320), py = uint32_t((1 - sy) / 2 * 180);
+            const float* p = &image.rgba[4 * (size_t(py) * 320 + px)];
+            for (int c = 0; c < 3; ++c)  // within half a pixel of the centre: at most 5 % blended with a neighbour
+                EXPECT_NEAR(p[c], kQuadrants[qy][qx][c], 0.05) << "quadrant " << qx << "," << qy << " channel " << c;
+        }
+}
+
 // ---- Watertight ---------------------------------------------------------------
 
 // A scene holding one mesh at the identity, for the reference's own structures.
@@ -456,7 +602,7 @@ TEST(Meshes, FuzzedFilesLoadOrAreRefused) {
     std::mt19937_64 rng(7);
     const char* tokens[] = {"nan", "inf", "-1", "1e39", "99999999999", "0", "f", "v", "/", "\"", "{", "]", ","};
     uint64_t loaded = 0, refused = 0;
-    for (const char* name : {"icosphere_1.obj", "prism.obj", "wine_glass.gltf"}) {
+    for (const char* name : {"icosphere_1.obj", "prism.obj", "wine_glass.gltf", "tiles.glb"}) {
         std::ifstream in(meshDir() + "/" + name, std::ios::binary);
         std::string original((std::istreambuf_iterator<char>(in)), {});
         std::string ext = fs::path(name).extension().string();
@@ -485,7 +631,7 @@ TEST(Meshes, FuzzedFilesLoadOrAreRefused) {
         }
     }
     EXPECT_GT(refused, 0u);
-    EXPECT_GT(loaded + refused, 449u);
+    EXPECT_GT(loaded + refused, 599u);
 }
 
 }  // namespace

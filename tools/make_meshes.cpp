@@ -1,21 +1,25 @@
 // Writes chapter 12's objects from the real world, procedurally (no
-// downloaded assets), into the folder given: each is a closed, consistently
-// wound surface, counter-clockwise seen from outside. Lengths are in
-// millimetres, as an optician gives them.
+// downloaded assets), into the folder given: each glass is a closed,
+// consistently wound surface, counter-clockwise seen from outside. Lengths
+// are in millimetres, as an optician gives them.
 //   lens.obj         biconvex BK7 lens, R = +-50 mm, centre thickness 5 mm, 30 mm across
 //   prism.obj        60-degree prism, 30 mm sides, 30 mm tall (flat faces)
 //   slab.obj         glass slab 40 x 30 x 10 mm (flat faces)
 //   wine_glass.gltf  a lathe-turned wine glass, with its glass material (+ .bin)
 //   icosphere_N.obj  the unit icosphere at levels 1-5 (smooth normals)
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
+//   tiles.glb        a tiled floor: a square with a base colour texture (an
+//                    embedded PNG) repeated 10 times each way, opaque and open
 #include "files.h"
 #include "mesh.h"
 
 #include <nlohmann/json.hpp>
+#include <stb_image_write.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -176,8 +180,41 @@ rg::Mesh torus(double major, double minor, int around, int across) {
     return m;
 }
 
+// A floor tile's texture: two stones in a 2 x 2 checker with grout lines, 8-bit sRGB.
+std::vector<unsigned char> tilePng(int size) {
+    std::vector<unsigned char> rgb(size_t(size) * size * 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            int tx = x % (size / 2), ty = y % (size / 2), grout = size / 32;
+            bool light = (x < size / 2) == (y < size / 2);
+            unsigned char c[3] = {light ? (unsigned char)222 : (unsigned char)64, light ? (unsigned char)210 : (unsigned char)72,
+                                  light ? (unsigned char)186 : (unsigned char)88};
+            if (tx < grout || ty < grout) c[0] = c[1] = c[2] = 140;
+            std::memcpy(&rgb[3 * (size_t(y) * size + x)], c, 3);
+        }
+    std::vector<unsigned char> png;
+    auto append = [](void* context, void* data, int bytes) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + bytes);
+    };
+    if (!stbi_write_png_to_func(append, &png, size, size, 3, rgb.data(), size * 3)) throw std::runtime_error("cannot encode a PNG");
+    return png;
+}
+
+// A square [-1, 1] x {0} x [-1, 1] facing up, its texture repeated `repeat` times each way.
+rg::Mesh square(float repeat) {
+    rg::Mesh m;
+    m.vertices = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}};
+    m.normals.assign(4, {0, 1, 0});
+    m.texcoords = {{0, 0}, {repeat, 0}, {repeat, repeat}, {0, repeat}};
+    m.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from above
+    return m;
+}
+
 // glTF 2.0: one mesh, one node, one material; the buffer beside (.gltf + .bin) or inside (.glb).
-void writeGltf(const std::string& path, const rg::Mesh& m, const nlohmann::json& material, bool binary) {
+// With texture coordinates and a PNG, the material's base colour texture is that image.
+void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json material, bool binary,
+               const std::vector<unsigned char>& png = {}) {
     std::vector<unsigned char> bin;
     auto append = [&](const void* data, size_t bytes) {
         const auto* b = static_cast<const unsigned char*>(data);
@@ -190,6 +227,10 @@ void writeGltf(const std::string& path, const rg::Mesh& m, const nlohmann::json&
     append(m.normals.data(), nBytes);
     size_t iOffset = bin.size(), iBytes = m.indices.size() * 4;
     append(m.indices.data(), iBytes);
+    size_t tOffset = bin.size(), tBytes = m.texcoords.size() * 8;
+    append(m.texcoords.data(), tBytes);
+    size_t pOffset = bin.size(), pBytes = png.size();
+    append(png.data(), pBytes);
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const glm::vec3& v : m.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
     std::string binName = path.substr(path.find_last_of('/') + 1);
@@ -213,6 +254,18 @@ void writeGltf(const std::string& path, const rg::Mesh& m, const nlohmann::json&
                        {{"bufferView", 1}, {"componentType", 5126}, {"count", m.normals.size()}, {"type", "VEC3"}},
                        {{"bufferView", 2}, {"componentType", 5125}, {"count", m.indices.size()}, {"type", "SCALAR"}}}},
     };
+    if (!m.texcoords.empty()) {
+        j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 3;
+        j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", tOffset}, {"byteLength", tBytes}, {"target", 34962}});
+        j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", m.texcoords.size()}, {"type", "VEC2"}});
+    }
+    if (!png.empty()) {
+        j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", pOffset}, {"byteLength", pBytes}});
+        j["images"] = {{{"bufferView", j["bufferViews"].size() - 1}, {"mimeType", "image/png"}}};
+        j["samplers"] = {{{"magFilter", 9729}, {"wrapS", 10497}, {"wrapT", 10497}}};  // linear, repeat
+        j["textures"] = {{{"source", 0}, {"sampler", 0}}};
+        j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    }
     if (!binary) {
         rg::writeFileAtomically(path.substr(0, path.find_last_of('/') + 1) + binName, bin.data(), bin.size());
         writeText(path, j.dump(1) + "\n");
@@ -253,6 +306,10 @@ int main(int argc, char** argv) {
             writeText(dir + "/icosphere_" + std::to_string(level) + ".obj",
                       toObj(rg::icosphere(level), "unit icosphere, level " + std::to_string(level)));
         writeGltf(dir + "/torus_1m.glb", torus(40, 12, 1000, 500), glassMaterial("glass", 1.5), true);
+        nlohmann::json stone = {{"name", "stone tiles"},
+                                {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"metallicFactor", 0.0},
+                                                          {"roughnessFactor", 0.9}}}};
+        writeGltf(dir + "/tiles.glb", square(10), stone, true, tilePng(64));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "make_meshes: %s\n", e.what());
         return 1;

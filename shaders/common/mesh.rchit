@@ -13,6 +13,7 @@
 #include "rt_bindings.glsl"
 #include "payload.glsl"
 #include "hit_error.glsl"
+#include "texture.glsl"
 
 // [region buffers]
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Floats { float f[]; };
@@ -22,6 +23,7 @@ layout(binding = RT_BINDING_MESHES, std430) readonly buffer Meshes { GpuMesh mes
 vec3 vec3At(Floats data, uint vertex) {
     return vec3(data.f[3u * vertex], data.f[3u * vertex + 1u], data.f[3u * vertex + 2u]);
 }
+vec2 vec2At(Floats data, uint vertex) { return vec2(data.f[2u * vertex], data.f[2u * vertex + 1u]); }
 // [end]
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
@@ -54,5 +56,17 @@ void main() {
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
     payload.error = hitError(max(abs(a), max(abs(b), abs(c))), gl_ObjectToWorldEXT, payload.normal);
     payload.object = gl_InstanceCustomIndexEXT;
+    // [region base_colour]
+    // On a hit the payload's radiance is free: it brings the base colour
+    // texture's value back, and hitMaterial (raygen_common.glsl) multiplies
+    // the material's ambient and diffuse colours by it.
+    payload.radiance = vec3(1.0);
+    uvec4 texture = materials[object.material].texture;
+    if (texture.z != 0u && mesh.texcoords != uvec2(0u)) {
+        Floats uvs = Floats(mesh.texcoords);
+        vec2 uv = w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
+        payload.radiance = sampleTexture(texture, uv);
+    }
+    // [end]
 }
 // [end]

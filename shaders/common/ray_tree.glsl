@@ -93,7 +93,7 @@ void growBranch() {
         tree.radiance += b.throughput * payload.radiance;
         return;
     }
-    GpuMaterial m = materials[objects[payload.object].material];
+    GpuMaterial m = hitMaterial();  // a mesh's texture tints it (ch 12)
     vec3 n = facingNormal(payload.normal, b.direction);
     vec3 ns = facingShading(payload.shading, payload.normal, b.direction);  // = n but on meshes
     vec3 p = payload.position;

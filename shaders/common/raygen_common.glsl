@@ -32,6 +32,21 @@ vec3 facingShading(vec3 shading, vec3 normal, vec3 direction) {
 }
 // [end]
 
+// [region hit_material]
+// The material of what the last trace hit. On a mesh, mesh.rchit brought
+// back its base colour texture's value in the payload's radiance (1 where
+// there is none), which tints the ambient and diffuse colours (chapter 12).
+GpuMaterial hitMaterial() {
+    GpuObject o = objects[payload.object];
+    GpuMaterial m = materials[o.material];
+    if (o.shape == SHAPE_MESH) {
+        m.ka.rgb *= payload.radiance;
+        m.kd.rgb *= payload.radiance;
+    }
+    return m;
+}
+// [end]
+
 void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
     imageStore(target, ivec2(pixel), vec4(color, 1.0));
     rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;

@@ -1,0 +1,45 @@
+// A base colour texture looked up at a texture coordinate (chapter 12):
+// glTF's convention, (0, 0) at the image's top-left corner and (1, 1) at
+// its bottom-right, texel centres at half-integers; the sampler's wrap per
+// axis, then bilinear weights (or the nearest texel). As for the sky, the
+// filter is done here in float instead of by a Vulkan sampler, so the CPU
+// reference repeats it exactly; ray tracing has no derivatives to choose a
+// mip level from, so every hit reads the full-size image.
+#ifndef TEXTURE_GLSL
+#define TEXTURE_GLSL
+layout(binding = RT_BINDING_TEXTURES, std430) readonly buffer Textures { vec4 texels[]; };
+
+// [region wrap]
+// A coordinate brought into [0, 1] by the wrap mode; the texel index is
+// then wrapped again below, for the neighbours bilinear filtering reads.
+float wrapCoordinate(float u, uint mode) {
+    if (mode == TEXTURE_WRAP_CLAMP) return clamp(u, 0.0, 1.0);
+    if (mode == TEXTURE_WRAP_MIRROR) return 1.0 - abs(mod(u, 2.0) - 1.0);  // 0..1..0 with period 2
+    return fract(u);
+}
+int wrapTexel(int i, int n, uint mode) {
+    if (mode == TEXTURE_WRAP_REPEAT) return (i % n + n) % n;
+    return clamp(i, 0, n - 1);  // clamped, or mirrored: the edge texel repeats at the turn
+}
+// [end]
+
+vec3 texel(uvec4 t, int x, int y) {
+    int w = int(t.y), h = int(t.z);
+    x = wrapTexel(x, w, t.w & 3u);
+    y = wrapTexel(y, h, (t.w >> TEXTURE_V_SHIFT) & 3u);
+    return texels[t.x + uint(y * w + x)].rgb;
+}
+
+// [region sample]
+vec3 sampleTexture(uvec4 t, vec2 uv) {
+    float x = wrapCoordinate(uv.x, t.w & 3u) * float(t.y);
+    float y = wrapCoordinate(uv.y, (t.w >> TEXTURE_V_SHIFT) & 3u) * float(t.z);
+    if ((t.w & TEXTURE_NEAREST) != 0u) return texel(t, int(floor(x)), int(floor(y)));
+    x -= 0.5;
+    y -= 0.5;  // between the four nearest texel centres
+    int x0 = int(floor(x)), y0 = int(floor(y));
+    float fx = x - float(x0), fy = y - float(y0);
+    return mix(mix(texel(t, x0, y0), texel(t, x0 + 1, y0), fx), mix(texel(t, x0, y0 + 1), texel(t, x0 + 1, y0 + 1), fx), fy);
+}
+// [end]
+#endif
