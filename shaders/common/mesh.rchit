@@ -54,7 +54,14 @@ void main() {
     payload.frontFace = gl_HitKindEXT == gl_HitKindFrontFacingTriangleEXT ? 1u : 0u;
     payload.t = gl_HitTEXT;
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    payload.error = hitError(max(abs(a), max(abs(b), abs(c))), gl_ObjectToWorldEXT, payload.normal);
+    // The point comes from the vertices, but the next ray's test against
+    // this triangle shears it into that ray's frame (Woop et al. 2013), which
+    // mixes the coordinates: it rounds with the largest of them, whichever
+    // way the triangle faces. Per axis, a floor at y = 0 would get a bound
+    // from its y = 0 alone, and on NVIDIA shadow rays near its diagonal hit it again.
+    vec3 corner = max(abs(a), max(abs(b), abs(c)));
+    vec3 magnitude = vec3(max(corner.x, max(corner.y, corner.z)));
+    payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.object = gl_InstanceCustomIndexEXT;
     // [region base_colour]
     // On a hit the payload's radiance is free: it brings the base colour
