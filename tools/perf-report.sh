@@ -6,6 +6,7 @@
 #   tools/perf-report.sh --assemble-only      (plots and page from existing data)
 # The scaling study is tools/scaling.py (--out docs/perf/<device>), run apart:
 # it takes minutes on lavapipe; this script plots and includes its results.
+# So is chapter 12's, tools/meshes_study.py (the same --out).
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -51,11 +52,21 @@ section() {
   echo "the raw numbers are in \`docs/perf/<device>/perf.json\`. Benchmarks print, they never fail a test."
   echo
   for dir in docs/perf/*/; do
-    [ -f "$dir/perf.md" ] || continue
     slug=$(basename "$dir")
-    section "$dir" "$slug" perf convergence "Chapter 11: RMSE against accumulated samples, samples per hit and GPU time"
-    if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
-      section "$dir" "$slug" scaling scaling "GPU ms per frame and structure memory against the number of spheres"
+    if [ -f "$dir/perf.md" ]; then
+      section "$dir" "$slug" perf convergence "Chapter 11: RMSE against accumulated samples, samples per hit and GPU time"
+      if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
+        section "$dir" "$slug" scaling scaling "GPU ms per frame and structure memory against the number of spheres"
+      fi
+    elif [ -f "$dir/meshes.json" ]; then  # a device measured for chapter 12 only
+      echo "### $(jq -r '.device' "$dir/meshes.json")"
+      echo
+      echo "Driver: $(jq -r '.driver' "$dir/meshes.json"). Chapter 12's study only (\`tools/meshes_study.py\`)."
+      echo
+    fi
+    if [ -f "$dir/meshes.md" ]; then  # tools/meshes_study.py
+      cat "$dir/meshes.md"
+      echo
     fi
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
