@@ -28,9 +28,10 @@
 namespace {
 
 // [region motion]
-// Where a moving object is at `frame`: 0.5 units along x, one cycle per 120 frames.
+// Where a moving object is at `frame`: up to 0.5 units along x, one cycle
+// per 240 frames, so that the default 60 frames end near its farthest.
 glm::dmat4 movedTransform(const rg::Object& o, uint32_t frame) {
-    double offset = 0.5 * std::sin(2.0 * 3.14159265358979323846 * frame / 120.0);
+    double offset = 0.5 * std::sin(2.0 * 3.14159265358979323846 * frame / 240.0);
     return glm::translate(glm::dmat4(1.0), glm::dvec3(offset, 0, 0)) * o.transform;
 }
 // [end]
@@ -156,7 +157,7 @@ int main(int argc, char** argv) {
                           {"update", "refit in place every frame (mode UPDATE)"}};
         report["top_view"] = {{"x0", bounds.x}, {"z0", bounds.y}, {"width", bounds.z}, {"depth", bounds.w},
                               {"last_frame", lastFrame}};
-        for (uint32_t i : order) {  // in TLAS order, which is also the top view's drawing order
+        for (uint32_t i : order) {  // in TLAS order, as the top view reads them
             const rg::Object& o = scene.objects[i];
             TopBox b = topBox(o.moving ? movedTransform(o, lastFrame) : o.transform);
             report["instances"].push_back({{"object", i}, {"shape", o.type == rg::ShapeType::Sphere ? "sphere" : "quad"},
