@@ -53,6 +53,11 @@ class DocsCheck(unittest.TestCase):
         self.assertNotIn("[region", text.replace("<!-- snippet", ""))
         self.assertEqual(docs(self.root, "--check").returncode, 0)
 
+    def test_listing_names_its_file(self):
+        self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
+        docs(self.root, "--write")
+        self.assertIn("<!-- snippet: a.rgen#inner -->\n`a.rgen`\n\n```glsl\n", (self.root / "docs" / "p.md").read_text())
+
     def test_inner_region_alone(self):
         self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
         docs(self.root, "--write")

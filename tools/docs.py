@@ -4,7 +4,8 @@
 In a page, a block between
     <!-- snippet: PATH#REGION -->  ...  <!-- end -->
 holds the region `// [region REGION]` ... `// [end]` of PATH (a file of the
-repository), dedented, in a fenced block; and a block between
+repository), dedented, in a fenced block under a line naming PATH; and a
+block between
     <!-- diff: OLD NEW -->  ...  <!-- end -->
 holds the unified diff from file or folder OLD to NEW; and a block between
     <!-- footer: NN_name -->  ...  <!-- end -->
@@ -159,9 +160,9 @@ def footer(root, chapter):
 def render(root, kind, arg):
     if kind == "footer":
         return footer(root, arg)
-    if kind == "snippet":
+    if kind == "snippet":  # the listing, captioned with the file it comes from
         path, name = arg.split("#")
-        return region(root, path, name)
+        return f"`{path}`\n\n" + region(root, path, name)
     old, new = arg.split()
     return diff(root, old, new)
 
