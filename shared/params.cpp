@@ -76,4 +76,18 @@ void Params::addTo(CLI::App& app) const {
     }
 }
 
+nlohmann::json Params::values() const {
+    nlohmann::json out = nlohmann::json::object();
+    for (const Param& p : params_) {
+        nlohmann::json& value = out[p.flag.substr(2)];
+        switch (p.kind) {
+        case Param::Kind::Integer: value = *p.integer; break;
+        case Param::Kind::Number: value = *p.number; break;
+        case Param::Kind::Choice: value = p.choices[size_t(*p.integer)]; break;
+        case Param::Kind::Toggle: value = *p.toggle != p.inverted; break;
+        }
+    }
+    return out;
+}
+
 }  // namespace rg

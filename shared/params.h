@@ -3,6 +3,7 @@
 // the two can never disagree on a name, a range or a default.
 #pragma once
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <deque>
 #include <functional>
@@ -40,6 +41,9 @@ public:
 
     // Adds every parameter to the command line, with its default shown.
     void addTo(CLI::App& app) const;
+    // The values now, by flag without its dashes ({"depth": 6, ...}): every
+    // report says what made its picture, headless or a window's F2.
+    nlohmann::json values() const;
     const std::deque<Param>& all() const { return params_; }
 
 private:

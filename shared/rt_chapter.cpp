@@ -92,7 +92,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
-        nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs}};  // the last frame's launches
+        nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},  // the last frame's launches
+                                {"parameters", params.values()}};
         if (canTwo) extra["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},
                                                         {"queue_capacity", two.capacity}};
         finishRtRun(app, opts, scene, rt, target, times, reference, extra);

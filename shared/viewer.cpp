@@ -321,15 +321,7 @@ void Viewer::screenshot(uint32_t frame) {
     report["camera"] = cameraToJson(camera_.camera(), scene_.origin);
     report["accumulated_frames"] = frame - firstFrame_;
     if (selectedMaterial_ >= 0) report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
-    for (const Param& p : params_.all()) {
-        nlohmann::json& value = report["parameters"][p.flag.substr(2)];
-        switch (p.kind) {
-        case Param::Kind::Integer: value = *p.integer; break;
-        case Param::Kind::Number: value = *p.number; break;
-        case Param::Kind::Choice: value = p.choices[size_t(*p.integer)]; break;
-        case Param::Kind::Toggle: value = *p.toggle != p.inverted; break;
-        }
-    }
+    report["parameters"] = params_.values();
     writeReport(stem + ".json", report);
     std::printf("F2: wrote %s.png and %s.json\n", stem.c_str(), stem.c_str());
     std::fflush(stdout);

@@ -754,6 +754,10 @@ TEST(Meshes, OneFilePlacedAThousandTimesIsOneBlas) {
     EXPECT_GT(mesh["blas_bytes"].get<double>(), 0);
     EXPECT_EQ(report["acceleration"]["tlas_instances"], 1001);  // and the floor
     EXPECT_EQ(report["validation_messages"], 0);
+    // The report says what made the picture: the chapter's parameters, as run.
+    EXPECT_EQ(report["parameters"]["depth"], 6);
+    EXPECT_EQ(report["parameters"]["sphere-mesh"], 0);
+    EXPECT_EQ(report["parameters"]["pattern"], "sobol");
 }
 
 // Mutated mesh files (bytes changed, cut short, numbers made huge or NaN):
