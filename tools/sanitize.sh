@@ -51,9 +51,10 @@ check() {  # name, command...
 for t in test_sphere_intersection test_sbt test_fresnel test_sampling; do check "$t" "$build/bin/$t"; done
 check test_scene_fuzz env RG_FUZZ_STRIDE=3 RG_FUZZ_SECONDS=60 "$build/bin/test_scene_fuzz" --gtest_filter='*Loader*'
 # Chapter 12's mesh loader and reference (the fuzzed mesh files, the checks,
-# the watertight and optics tests); its GPU runs are the chapter's line below.
+# textures, the watertight and optics tests); its GPU runs are the chapter's
+# line below, so the optics read off rendered images are left to ctest.
 check test_12_meshes "$build/bin/test_12_triangle_meshes" \
-  --gtest_filter='Meshes.Fuzzed*:Meshes.Broken*:Meshes.Open*:Meshes.Degenerate*:Meshes.Gltf*:Meshes.Generated*:Optics.*'
+  --gtest_filter='Meshes.Fuzzed*:Meshes.Broken*:Meshes.Open*:Meshes.Degenerate*:Meshes.Gltf*:Meshes.Generated*:Optics.*:Textures.Gltf*:Textures.Obj*:Textures.Reference*-Optics.*FromTheImage'
 # The fault suite (signals, a full disk, special files, limits): its chapters
 # run sanitized too, and any report breaks their one line of stderr. Not its
 # window test: with the layer preloaded GLFW finds no Vulkan surface support
