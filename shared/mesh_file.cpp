@@ -61,8 +61,9 @@ std::string decodeImage(const unsigned char* bytes, int size, int& width, int& h
 }
 
 std::vector<unsigned char> readImageFile(const std::string& meshPath, const std::string& image) {
+    requireRegularFile(image, meshPath + ": map_Kd");  // missing, a folder, a FIFO: each its own reason
     std::ifstream in(image, std::ios::binary);
-    if (!std::filesystem::is_regular_file(image) || !in) fail(meshPath, "cannot read the image " + image);
+    if (!in) fail(meshPath, "cannot read the image " + image);
     return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
 }
 
