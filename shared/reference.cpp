@@ -380,6 +380,7 @@ namespace {
 // indices on both sides; n faces the ray.
 struct Split {
     double reflected = 0, refracted = 0, local = 1, n1 = 1, n2 = 1;
+    double highlight = 1;  // the highlight's share: the opaque part's and a dielectric's F
 };
 
 Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering, double cosI) {
@@ -391,8 +392,10 @@ Split splitAt(const ReferenceSettings& settings, const Material& m, bool enterin
         double F = referenceFresnel(settings.fresnelMode, m.f0, cosI, s.n1, s.n2);
         s.reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
         if (settings.stage >= ReferenceStage::Refraction) s.refracted = m.transmission * (1 - F);
+        s.highlight = (1 - m.transmission) * (1 - m.reflectivity) + m.transmission * F;
     }
     s.local = 1 - s.reflected - s.refracted;
+    if (settings.stage < ReferenceStage::Fresnel) s.highlight = s.local;  // chapter 08: the thesis's mix
     return s;
 }
 
@@ -432,18 +435,18 @@ void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dv
 
 glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
                                            double error, const glm::dvec3& n, const glm::dvec3& ns,
-                                           const glm::dvec3& v) const {
-    glm::dvec3 color = m.ka * scene_.ambient;  // 3.1
+                                           const glm::dvec3& v, double local, double highlight) const {
+    glm::dvec3 color = local * m.ka * scene_.ambient;  // 3.1
     if (settings.stage == ReferenceStage::Ambient) return color;
     glm::dvec3 from = secondaryOrigin(p, error, n);
     for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
         glm::dvec3 l = glm::normalize(light.position - p);
         double ndotl = glm::dot(ns, l);
         if (ndotl <= 0 || !lightVisible(from, light.position)) continue;
-        color += light.intensity * m.kd * ndotl;
+        color += local * light.intensity * m.kd * ndotl;
         if (settings.stage != ReferenceStage::Diffuse) {
             glm::dvec3 h = glm::normalize(l + v);
-            color += light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
+            color += highlight * light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
         }
     }
     return color;
@@ -466,7 +469,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     Split split = splitAt(settings, m, entering, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, ns, v);
+    if (split.highlight > 0) color += localShading(settings, m, p, hit.error, n, ns, v, split.local, split.highlight);
     if (depth >= settings.maxDepth) return color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
@@ -508,7 +511,7 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     Split split = splitAt(settings, m, entering, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.local > 0) color += split.local * localShading(settings, m, p, hit.error, n, ns, v);
+    if (split.highlight > 0) color += localShading(settings, m, p, hit.error, n, ns, v, split.local, split.highlight);
     if (refracted >= 1e-4) {
         glm::dvec3 t;
         if (refractSides(direction, n, ns, split.n1, split.n2, t))

@@ -56,9 +56,12 @@ public:
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
                         int depth, const glm::dvec3& throughput) const;
-    // n: the geometric normal (shadow rays leave along it); ns: the shading normal.
+    // n: the geometric normal (shadow rays leave along it); ns: the shading
+    // normal. Ambient and diffuse light are weighted by `local`, the
+    // highlight by `highlight` (a dielectric's share F of it, chapter 09 on).
     glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p, double error,
-                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v) const;
+                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v, double local = 1,
+                            double highlight = 1) const;
     // Renders every pixel on all cores. For chapter 11 each pixel's alpha
     // holds the standard error of its estimate (the reference's own error).
     FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;

@@ -11,6 +11,7 @@
 // [region split]
 struct Split {
     float reflected, refracted, local;  // shares of the light; they sum to 1
+    float highlight;                    // the highlight's share: local + a dielectric's F
     float eta;                          // n1 / n2 for Snell's law
 };
 
@@ -22,6 +23,7 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     s.reflected = transmission * F + (1.0 - transmission) * m.params.y;
     s.refracted = transmission * (1.0 - F);  // R + T = 1 for the dielectric part
     s.local = 1.0 - s.reflected - s.refracted;
+    s.highlight = s.local + transmission * F;  // a light's glint is reflection too
     s.eta = n1 / n2;
     return s;
 }
@@ -101,7 +103,8 @@ void growBranch() {
     float radius = objects[payload.object].radius;  // 0: not a sphere
     bool entering = payload.frontFace == 1u;  // from the hit kind on meshes (chapter 12)
     Split s = splitAt(m, entering, ns, b.direction);
-    if (s.local > 0.0) tree.radiance += b.throughput * s.local * localShading(m, p, e, n, ns, -b.direction, tree.rays);
+    if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
+        tree.radiance += b.throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local, s.highlight, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
     // [region refract]

@@ -94,7 +94,8 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
 // [end]
 
 // [region diffuse_specular]
-// Diffuse and Blinn-Phong specular together, one shadow ray per light:
+// Diffuse and Blinn-Phong specular together, one shadow ray per light
+// whose light could reach the eye from here:
 // k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
 // Chapter 12's meshes light with their interpolated normal `ns`; shadow
 // rays still leave along the surface's own normal n (ns = n before).
@@ -105,11 +106,12 @@ vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, ve
         vec3 l = safeNormalize(lights[i].position.xyz - p);
         float ndotl = dot(ns, l);
         if (ndotl <= 0.0) continue;
-        ++rays;
-        if (!lightVisible(origin, lights[i].position.xyz)) continue;
         vec3 h = normalize(l + v);
         float specular = specularPower(ns, h, m.params.x);
-        sum += lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
+        vec3 light = lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
+        if (light == vec3(0.0)) continue;  // nothing to shadow (clear glass away from its glint): no ray
+        ++rays;
+        if (lightVisible(origin, lights[i].position.xyz)) sum += light;
     }
     return sum;
 }
@@ -126,4 +128,19 @@ vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, i
 vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
     return localShading(m, p, error, n, n, v, rays);
 }
+
+// [region surface_light]
+// Chapter 09 on: the two parts of the local model take different shares of
+// the light. Ambient and diffuse light is scattered by the surface's own
+// material: it takes the share the surface keeps (`local`). The highlight
+// is the light's reflection, blurred (thesis 3.3): a dielectric reflects
+// the Fresnel share F of it (`highlight`), however much it refracts.
+vec3 surfaceLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, float local, float highlight,
+                  inout uint rays) {
+    GpuMaterial weighted = m;
+    weighted.kd.rgb *= local;
+    weighted.ks.rgb *= highlight;
+    return local * ambientTerm(m) + diffuseSpecularTerm(weighted, p, error, n, ns, v, rays);
+}
+// [end]
 #endif
