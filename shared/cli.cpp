@@ -2,6 +2,8 @@
 
 #include "files.h"
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>

@@ -1,12 +1,16 @@
 // One command line for every chapter (CLI11). Chapters add their own options
 // through the callback; bad input prints one line and gives exit code 2.
 #pragma once
-#include <CLI/CLI.hpp>
-
 #include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
+
+// Declared ahead: CLI11's header is heavy to compile, so only the files
+// that add options include <CLI/CLI.hpp>.
+namespace CLI {
+class App;
+}
 
 namespace rg {
 

@@ -1,5 +1,7 @@
 #include "params.h"
 
+#include <CLI/CLI.hpp>
+
 #include <map>
 
 namespace rg {

@@ -2,7 +2,8 @@
 // option (CLI11) and, in a window, a control in the overlay (viewer.h), so
 // the two can never disagree on a name, a range or a default.
 #pragma once
-#include <CLI/CLI.hpp>
+#include "cli.h"  // CLI::App, declared ahead
+
 #include <nlohmann/json.hpp>
 
 #include <deque>

@@ -11,6 +11,8 @@
 #include "two_launches.h"
 #include "viewer.h"
 
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 
 namespace rg {

@@ -7,6 +7,8 @@
 #include "params.h"
 #include "rt_scene.h"
 
+#include <CLI/CLI.hpp>
+
 #include <cmath>
 
 namespace {

@@ -15,6 +15,8 @@
 #include "resources.h"
 #include "vk_check.h"
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 
 namespace {

@@ -18,6 +18,8 @@
 #include "scene.h"
 #include "vk_check.h"
 
+#include <CLI/CLI.hpp>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>

@@ -13,6 +13,8 @@
 #include "scene.h"
 #include "viewer.h"
 
+#include <CLI/CLI.hpp>
+
 int main(int argc, char** argv) {
     rg::Options opts;
     auto extra = [](CLI::App& app, rg::Options& o) { rg::addSceneOptions(app, o, true); };
