@@ -74,7 +74,7 @@ std::optional<int> parseCommandLine(int argc, char** argv, const std::string& ch
     app.add_option("--frames", opts.frames,
                    "Frames to render (default: 10 headless, until closed in a window)")
         ->check(CLI::Range(1, 1000000));
-    app.add_option("--output", opts.output, "PNG to write (default: <chapter>.png)");
+    app.add_option("--output", opts.output, "PNG to write (default: out/<chapter>.png)");
     app.add_option("--report", opts.report, "JSON report to write (default: the PNG name with .json)");
     app.add_flag("--validation", opts.validation,
                  "Enable the Khronos validation layer; any message makes the exit code non-zero");
@@ -92,12 +92,26 @@ std::optional<int> parseCommandLine(int argc, char** argv, const std::string& ch
         return 2;
     }
     if (!opts.headless && !displayAvailable()) opts.headless = true;
-    if (opts.output.empty()) opts.output = chapter + ".png";
+    // Outputs go to out/ (from where the chapter runs) unless --output says
+    // otherwise, never beside the sources; the folder is made when missing.
+    if (opts.output.empty()) opts.output = "out/" + chapter + ".png";
     if (opts.report.empty())
         opts.report = std::filesystem::path(opts.output).replace_extension(".json").string();
     if (auto clash = outputClash(opts)) {
         std::fprintf(stderr, "%s: error: %s\n", chapter.c_str(), clash->c_str());
         return 2;
+    }
+    for (const std::string& file : {opts.output, opts.report}) {
+        std::filesystem::path folder = std::filesystem::path(file).parent_path();
+        std::error_code error;
+        if (folder.empty() || std::filesystem::is_directory(folder, error)) continue;
+        std::filesystem::create_directories(folder, error);
+        if (error) {
+            std::fprintf(stderr, "%s: error: cannot make the folder %s for %s: %s\n", chapter.c_str(),
+                         escapeControl(folder.string()).c_str(), escapeControl(file).c_str(),
+                         error.message().c_str());
+            return 2;
+        }
     }
     return std::nullopt;
 }

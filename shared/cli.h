@@ -20,7 +20,7 @@ struct Options {
     int width = 800;
     int height = 450;
     int frames = 0;               // 0: headless 10, windowed until the window closes
-    std::string output;           // PNG path (default <chapter>.png)
+    std::string output;           // PNG path (default out/<chapter>.png)
     std::string report;           // JSON path (default: the PNG path with .json)
     bool validation = false;      // VK_LAYER_KHRONOS_validation + synchronization checks
     int device = -1;              // index into vkEnumeratePhysicalDevices, -1: choose

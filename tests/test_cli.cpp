@@ -2,6 +2,7 @@
 // every chapter (the options are shared, the test runs each executable).
 #include "harness.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -83,6 +84,29 @@ TEST_P(CommandLine, UnwritableOutputIsAnErrorNamingTheFile) {
     size_t errors = 0;
     for (size_t at = r.output.find("error:"); at != std::string::npos; at = r.output.find("error:", at + 1)) ++errors;
     EXPECT_EQ(errors, 1u) << r.output;
+}
+
+// Without --output a chapter writes into out/ below the folder it runs in,
+// making it; a folder named by --output is made too.
+TEST_P(CommandLine, OutputsGoToOutByDefault) {
+    std::string exe = GetParam(), name = std::filesystem::path(exe).filename().string();
+    std::string dir = rgtest::outputDir("cli_out_" + name);
+    rgtest::RunResult r = rgtest::run("sh", {"-c", "cd \"$0\" && exec \"$1\" --headless --width 16 --height 16 --frames 1",
+                                             dir, exe});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/out/" + name + ".png")) << r.output;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/out/" + name + ".json")) << r.output;
+    r = rgtest::run(exe, {"--headless", "--width", "16", "--height", "16", "--frames", "1", "--output",
+                          dir + "/a/b/x.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/a/b/x.png")) << r.output;
+}
+
+TEST_P(CommandLine, AnOutputFolderThatCannotBeMadeIsOneError) {
+    rgtest::RunResult r = rgtest::run(GetParam(), {"--headless", "--output", "/proc/rayglass/x.png"});
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("error: cannot make the folder /proc/rayglass for /proc/rayglass/x.png"), std::string::npos)
+        << r.output;
 }
 
 // No Vulkan driver at all: say what to install, not where in the code it failed.

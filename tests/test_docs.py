@@ -96,6 +96,8 @@ class DocsCheck(unittest.TestCase):
         self.assertIn("Previous: [01 · Title 1](01_a.md)", text)
         self.assertIn("Next: [03 · Title 3](03_c.md)", text)
         self.assertIn("## Next\n\n[03 · Title 3](03_c.md).", text)  # no index.md: no teaser
+        self.assertIn("cmake --build build --target 02_b  # this chapter alone", text)
+        self.assertIn("ctest --test-dir build -L 02", text)
         (self.root / "docs" / "index.md").write_text("| # | chapter | thesis | new in it |\n| 03 | [c](03_c.md) | 1 | rays |\n")
         self.assertEqual(docs(self.root, "--check").returncode, 1)  # the teaser comes from the index
         self.assertEqual(docs(self.root, "--write").returncode, 0)

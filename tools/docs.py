@@ -154,7 +154,15 @@ def footer(root, chapter):
     nav.append("[Contents](index.md)")
     if i + 1 < len(pages):
         nav.append(f"Next: [{title(pages[i + 1])}]({pages[i + 1].name})")
-    return f"\n## Next\n\n{upcoming}\n\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
+    commands = [(f"cmake --build build --target {chapter}", "this chapter alone"),
+                (f"build/bin/{chapter}", "a window, where a display exists"),
+                (f"build/bin/{chapter} --headless", f"writes out/{chapter}.png and .json"),
+                (f"ctest --test-dir build -L {nn}", "its tests")]
+    width = max(len(c) for c, _ in commands) + 2
+    block = "".join(f"{c.ljust(width)}# {why}\n" for c, why in commands)
+    run = ("\n## Build and run this chapter\n\nFrom the repository's root, after the README's set-up:\n\n"
+           f"```sh\n{block}```\n")
+    return run + f"\n## Next\n\n{upcoming}\n\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
 
 
 def render(root, kind, arg):
