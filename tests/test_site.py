@@ -89,6 +89,12 @@ def check_page(d, site, page, docs, failures):
         got = d.execute_script("return document.querySelectorAll('.arithmatex .katex').length")
         if got != want:
             fail(f"{want} formula(s) in the Markdown, {got} rendered by KaTeX")
+        # At 1280 px every display formula fits its column (a narrow phone's
+        # screen may scroll one sideways).
+        for width, label in d.execute_script(
+                "return [...document.querySelectorAll('div.arithmatex')].filter(e => e.scrollWidth > e.clientWidth + 1)"
+                ".map(e => [e.scrollWidth + ' px of ' + e.clientWidth, e.innerText.replace(/\\s+/g, ' ').slice(0, 40)])"):
+            fail(f"a formula overflows its column at 1280 px ({width}): {label}")
         text = d.execute_script("return document.querySelector('article').innerText")
         for raw in ("$$", "\\(", "\\["):
             if raw in text:

@@ -2,7 +2,8 @@
 # Installs what is missing (Debian 12 or 13), builds RayGlass, runs every
 # chapter headless with validation, writing each chapter's PNG and JSON
 # report into one folder (default: out/) and printing one line per chapter,
-# and builds the docs site into out/site/ (tools/site.sh).
+# builds the docs site into out/site/ (tools/site.sh) and prints it as the
+# ebook out/rayglass.pdf (tools/ebook.py).
 #
 #   tools/setup.sh [--deps-only] [--out DIR] [--build DIR]
 #
@@ -26,7 +27,7 @@ done
 packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
           mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
-          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev)
+          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils)
 min_mesa=24.1
 
 sudo_cmd=()
@@ -114,4 +115,6 @@ status=0
 tools/run-all.sh --build "$build" --out "$out" || status=1
 echo "== building the docs site"
 tools/site.sh --out "$out/site" || status=1
+echo "== printing the ebook"
+/usr/bin/python3 tools/ebook.py --site "$out/site" --out "$out/rayglass.pdf" || status=1
 exit $status
