@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""Every command a chapter page prints in a ```sh block is run as printed,
+so that a page cannot show a command that fails.
+
+Each block runs as one bash script (set -e) in a fresh folder that looks
+like the repository's root: assets/, tests/, tools/ and docs/ are the
+sources', and build/bin/ holds one small script per chapter that runs the
+real executable with --validation added. No display is set, so commands
+printed for a window run headless. The lines that build or test the tree
+itself (cmake --build, ctest) are left out, and so is a command the page
+has already printed. A block passes when it exits 0,
+prints no validation message and every chapter report it wrote says 0
+validation messages.
+
+    tests/test_page_commands.py PAGE.md BUILD_BIN_DIR
+"""
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SKIPPED = ("cmake ", "ctest ")  # they build and test the tree this test runs in
+
+
+def blocks(markdown):
+    # Not the footer's "Build and run this chapter" box: tools/docs.py writes
+    # it alike for every page, and test_cli.cpp's OutputsGoToOutByDefault
+    # runs its commands for every chapter.
+    markdown = re.sub(r"<!-- footer: .*?<!-- end -->", "", markdown, flags=re.S)
+    return re.findall(r"^```sh\n(.*?)^```", markdown, re.S | re.M)
+
+
+def make_root(folder, bin_dir):
+    for name in ("assets", "tests", "tools", "docs"):
+        (folder / name).symlink_to(ROOT / name)
+    bin_copy = folder / "build" / "bin"
+    bin_copy.mkdir(parents=True)
+    (bin_copy / "assets").symlink_to(bin_dir / "assets")
+    for exe in sorted(bin_dir.glob("[0-9][0-9]_*")):
+        if exe.is_file() and os.access(exe, os.X_OK):
+            wrapper = bin_copy / exe.name
+            wrapper.write_text(f'#!/bin/sh\nexec "{exe}" "$@" --validation\n')
+            wrapper.chmod(0o755)
+
+
+def run_block(block, bin_dir, seen):
+    """Runs a block; `seen` holds the one-line commands already run from this
+    page, which are not run again (without a display, a window's command is
+    its --headless one)."""
+    lines = []
+    for line in block.splitlines():
+        command = line.split("  #")[0].strip()
+        if command.startswith(SKIPPED):
+            continue
+        if command.startswith("build/bin/") and not command.endswith("\\"):
+            key = " ".join(a for a in command.split() if a != "--headless")
+            if key in seen:
+                continue
+            seen.add(key)
+        lines.append(line)
+    script = "\n".join(lines)
+    if not script.strip():
+        return None
+    with tempfile.TemporaryDirectory(prefix="rayglass-page-") as work:
+        folder = pathlib.Path(work)
+        make_root(folder, bin_dir)
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        r = subprocess.run(["bash", "-c", "set -euo pipefail\n" + script], cwd=folder, env=env,
+                           capture_output=True, text=True, timeout=240)
+        problems = []
+        if r.returncode != 0:
+            tail = (r.stdout + r.stderr).strip().splitlines()[-3:]
+            problems.append(f"exit {r.returncode}: " + " | ".join(tail))
+        if re.search(r"validation message|VUID-|SYNC-HAZARD", r.stdout + r.stderr):
+            problems.append("a validation message")
+        reports = 0
+        for path in folder.rglob("*.json"):
+            if any(p.is_symlink() for p in [path, *path.parents] if folder in p.parents):
+                continue  # the sources' own scene files
+            try:
+                report = json.loads(path.read_text())
+            except ValueError:
+                continue
+            if isinstance(report, dict) and "validation_messages" in report:
+                reports += 1
+                if report["validation_messages"] != 0:
+                    problems.append(f"{path.name}: {report['validation_messages']} validation messages")
+        if r.returncode == 0 and reports == 0:
+            problems.append("no chapter report written")
+        return problems
+
+
+def main(page, bin_dir):
+    page, bin_dir = pathlib.Path(page), pathlib.Path(bin_dir).resolve()
+    failures, ran, seen = [], 0, set()
+    for block in blocks(page.read_text()):
+        problems = run_block(block, bin_dir, seen)
+        if problems is None:
+            continue
+        ran += 1
+        first = block.strip().splitlines()[0]
+        failures += [f"{page.name}: `{first}`: {p}" for p in problems]
+    for f in failures:
+        print("FAIL", f)
+    print(f"test_page_commands: {ran} block(s) of {page.name} run")
+    if ran == 0:
+        print(f"FAIL {page.name}: no command to run")
+        return 1
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        print(__doc__)
+        sys.exit(2)
+    sys.exit(main(*sys.argv[1:]))
