@@ -442,12 +442,16 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, co
     for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
         glm::dvec3 l = glm::normalize(light.position - p);
         double ndotl = glm::dot(ns, l);
-        if (ndotl <= 0 || !lightVisible(from, light.position)) continue;
-        color += local * light.intensity * m.kd * ndotl;
+        if (ndotl <= 0) continue;
+        glm::dvec3 added = local * light.intensity * m.kd * ndotl;
         if (settings.stage != ReferenceStage::Diffuse) {
             glm::dvec3 h = glm::normalize(l + v);
-            color += highlight * light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
+            added += highlight * light.intensity * m.ks * std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
+            // As the GPU (shading.glsl's MIN_LIGHT): a light adding less than
+            // 1e-4 is left out, as a branch carrying less is not traced.
+            if (std::max({added.r, added.g, added.b}) < 1e-4) continue;
         }
+        if (lightVisible(from, light.position)) color += added;
     }
     return color;
 }

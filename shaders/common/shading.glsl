@@ -9,6 +9,8 @@
 
 layout(location = 1) rayPayloadEXT uint shadowPayload;
 
+#define MIN_LIGHT 1e-4  // a light adding less than this to a point is left out (no shadow ray)
+
 // [region ambient]
 vec3 ambientTerm(GpuMaterial m) {
     return m.ka.rgb * camera.ambient.rgb;  // I_g = k_a I_a
@@ -109,7 +111,9 @@ vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, ve
         vec3 h = normalize(l + v);
         float specular = specularPower(ns, h, m.params.x);
         vec3 light = lights[i].intensity.rgb * (m.kd.rgb * ndotl + m.ks.rgb * specular);
-        if (light == vec3(0.0)) continue;  // nothing to shadow (clear glass away from its glint): no ray
+        // A light that could add next to nothing here (clear glass away from its
+        // glint) is not shadow-tested: the rule the ray tree prunes branches by.
+        if (max(light.r, max(light.g, light.b)) < MIN_LIGHT) continue;
         ++rays;
         if (lightVisible(origin, lights[i].position.xyz)) sum += light;
     }
