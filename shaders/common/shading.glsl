@@ -96,8 +96,8 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
 // [end]
 
 // [region diffuse_specular]
-// Diffuse and Blinn-Phong specular together, one shadow ray per light
-// whose light could reach the eye from here:
+// Diffuse and Blinn-Phong specular together, one shadow ray per light that
+// could add at least MIN_LIGHT here:
 // k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
 // Chapter 12's meshes light with their interpolated normal `ns`; shadow
 // rays still leave along the surface's own normal n (ns = n before).
