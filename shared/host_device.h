@@ -102,7 +102,8 @@ struct RtCamera {
     vec4 skyBottom;
     vec4 ambient;      // I_a (chapter 05)
     uvec4 counts;      // sky width, sky height (0: gradient), light count, object count
-    vec4 eye;          // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface); y, z, w unused
+    vec4 eye;          // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface);
+                       // y: the medium the eye is in (chapter 13): material index + 1, 0 for air; z, w unused
 };
 RG_SIZE(RtCamera, 224);
 
@@ -138,8 +139,9 @@ struct GpuMaterial {
     vec4 extra;    // f0, roughness, unused, unused
     uvec4 texture; // chapter 12's base colour texture: its first texel in textures[],
                    // width, height (0: none), TEXTURE_* flags
+    vec4 medium;   // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
 };
-RG_SIZE(GpuMaterial, 96);
+RG_SIZE(GpuMaterial, 112);
 // [end]
 
 // GpuMaterial::texture.w: how each axis wraps (glTF's samplers), and the filter.
@@ -184,7 +186,7 @@ struct Branch {
     vec3 direction;
     float tMax;       // how far its ray can go: twice the radius when it starts inside a sphere
     vec3 throughput;  // the share of the pixel's light this branch carries
-    float pad1;
+    uint media;       // chapter 13: the media the ray is inside (shaders/common/media.glsl)
 };
 RG_SIZE(Branch, 48);
 

@@ -334,6 +334,17 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         f.transmission = std::clamp(extensionNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0), 0.0, 1.0);
         f.ior = std::clamp(extensionNumber(m.extensions, "KHR_materials_ior", "ior", 1.5), 1.0, 10.0);
         f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, f.name);
+        // KHR_materials_volume (chapter 13): the medium's absorption; its
+        // thickness factor is for rasterizers, a ray tracer meets the real one.
+        f.attenuationDistance = extensionNumber(m.extensions, "KHR_materials_volume", "attenuationDistance", 0.0);
+        if (!(f.attenuationDistance > 0 && std::isfinite(f.attenuationDistance))) f.attenuationDistance = 0;
+        auto volume = m.extensions.find("KHR_materials_volume");
+        if (f.attenuationDistance > 0 && volume->second.Has("attenuationColor")) {
+            const tinygltf::Value& c = volume->second.Get("attenuationColor");
+            if (!c.IsArray() || c.ArrayLen() != 3) fail(path, "material " + f.name + ": attenuationColor is not 3 numbers");
+            for (int k = 0; k < 3; ++k)
+                f.attenuationColor[k] = std::clamp(c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : 1.0, 1e-6, 1.0);
+        }
         file.materials.push_back(f);
     }
     AccessorReader read{model, path};

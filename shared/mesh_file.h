@@ -22,6 +22,8 @@ struct FileMaterial {
     double metallic = 1, roughness = 1;  // glTF's defaults
     double transmission = 0;    // KHR_materials_transmission
     double ior = 1.5;           // KHR_materials_ior
+    glm::dvec3 attenuationColor{1.0};  // KHR_materials_volume (chapter 13): the colour white light
+    double attenuationDistance = 0;    // keeps after this distance in the scene's units; 0: no absorption
     int baseColorTexture = -1;  // index into MeshFile::textures (times baseColor), -1: none
 };
 

@@ -78,7 +78,8 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std:
     }
     return {v4(m.ka), v4(m.kd), v4(m.ks),
             glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
-            glm::vec4(float(m.f0), float(m.roughness), 0, 0), texture};
+            glm::vec4(float(m.f0), float(m.roughness), 0, 0), texture,
+            glm::vec4(glm::vec3(m.absorption), float(m.priority))};
 }
 
 // The scene's buffers and structures against the device's limits, before
@@ -157,7 +158,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     camera.skyBottom = v4(scene.sky.bottom);
     camera.ambient = v4(scene.ambient);
     camera.counts = {sky.width, sky.height, uint32_t(scene.lights.size()), uint32_t(scene.objects.size())};
-    camera.eye = {float(scene.eyeTmin), 0, 0, 0};
+    camera.eye = {float(scene.eyeTmin), float(scene.cameraMedium + 1), 0, 0};
     rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     std::vector<gpu::GpuObject> objects;

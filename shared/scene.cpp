@@ -314,6 +314,7 @@ Material materialFromFile(const FileMaterial& f) {
     m.ior = f.ior;
     m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
     m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;  // rough reflection only for metal (ch 11)
+    if (f.attenuationDistance > 0) m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);  // ch 13
     return m;
 }
 // [end]
@@ -415,7 +416,7 @@ Scene loadScene(const std::string& path) {
 
     if (!j.contains("camera")) r.fail("camera", "missing");
     const json& c = j["camera"];
-    r.onlyKeys(c, "camera", {"position", "look_at", "up", "fov_y_deg"});
+    r.onlyKeys(c, "camera", {"position", "look_at", "up", "fov_y_deg", "medium"});
     if (c.contains("position")) s.camera.position = r.vec3(c["position"], "camera.position");
     if (c.contains("look_at")) s.camera.lookAt = r.vec3(c["look_at"], "camera.look_at");
     if (c.contains("up")) s.camera.up = r.vec3(c["up"], "camera.up");
@@ -459,7 +460,8 @@ Scene loadScene(const std::string& path) {
     for (auto it = materials.begin(); it != materials.end(); ++it) {
         std::string key = "materials." + it.key();
         const json& m = it.value();
-        r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness"});
+        r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness",
+                            "attenuation_color", "attenuation_distance", "priority"});
         Material mat;
         mat.name = it.key();
         if (m.contains("ka")) mat.ka = r.vec3(m["ka"], key + ".ka", 0, 1);
@@ -471,6 +473,20 @@ Scene loadScene(const std::string& path) {
         if (m.contains("ior")) mat.ior = r.number(m["ior"], key + ".ior", 1, 10);
         if (m.contains("f0")) mat.f0 = r.number(m["f0"], key + ".f0", 0, 1);
         if (m.contains("roughness")) mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
+        // Chapter 13: the medium inside, as glTF's KHR_materials_volume gives it:
+        // white light keeps attenuation_color after attenuation_distance.
+        if (m.contains("attenuation_color") != m.contains("attenuation_distance"))
+            r.fail(key + (m.contains("attenuation_color") ? ".attenuation_distance" : ".attenuation_color"),
+                   "missing (attenuation_color and attenuation_distance come together)");
+        if (m.contains("attenuation_color")) {
+            glm::dvec3 color = r.vec3(m["attenuation_color"], key + ".attenuation_color", 1e-6, 1);
+            double distance = r.number(m["attenuation_distance"], key + ".attenuation_distance", 1e-12, kHuge);
+            mat.absorption = absorptionOf(color, distance);
+        }
+        if (m.contains("priority")) {
+            if (!m["priority"].is_number_integer()) r.fail(key + ".priority", "must be a whole number");
+            mat.priority = int(r.number(m["priority"], key + ".priority", 0, 255));
+        }
         s.materials.push_back(mat);
     }
     MeshFiles meshFiles(r, path, s);
@@ -480,6 +496,11 @@ Scene loadScene(const std::string& path) {
             if (s.materials[i].name == name) return uint32_t(i);
         r.fail(key, "no material named \"" + name + "\"");
     };
+    if (j["camera"].contains("medium")) {  // chapter 13: the eye under water, inside glass
+        s.cameraMedium = int(materialIndex(j["camera"]["medium"], "camera.medium"));
+        if (s.materials[s.cameraMedium].transmission <= 0)
+            r.fail("camera.medium", "must name a material that transmits (transmission > 0): an eye cannot be inside an opaque one");
+    }
 
     if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
         r.fail("objects", "must be an array with at least one object");
@@ -587,6 +608,13 @@ Scene loadScene(const std::string& path) {
     return s;
 }
 
+void refuseUnstackableMedia(const Scene& scene) {
+    for (size_t i = 255; i < scene.materials.size(); ++i)
+        if (scene.materials[i].transmission > 0)
+            throw InputError(scene.path + ": materials." + scene.materials[i].name +
+                             ": a medium must be among the first 255 materials (chapter 13's stack keeps 8 bits an entry)");
+}
+
 void refuseMeshes(const Scene& scene) {
     for (const Object& o : scene.objects)
         if (o.type == ShapeType::Mesh)
@@ -613,6 +641,10 @@ nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin) {
     auto array = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
     return {{"position", array(camera.position - origin)}, {"look_at", array(camera.lookAt - origin)},
             {"up", array(camera.up)}, {"fov_y_deg", camera.fovYDeg}};
+}
+
+glm::dvec3 absorptionOf(const glm::dvec3& color, double distance) {
+    return -glm::log(color) / distance;  // exp(-sigma d) = color at d = distance
 }
 
 }  // namespace rg

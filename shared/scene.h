@@ -44,6 +44,9 @@ struct Material {
     double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
     double roughness = 0;          // lobe width for rough reflection (ch 11)
     int texture = -1;              // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
+    // Chapter 13, for a material that transmits: the medium inside it.
+    glm::dvec3 absorption{0};      // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
+    int priority = 0;              // where media overlap, the one of highest priority fills the space
 };
 
 enum class ShapeType { Sphere, Quad, Mesh };
@@ -78,6 +81,7 @@ struct Scene {
     // Camera rays ignore hits closer to the eye than this: 0 unless the eye
     // lies on a surface (eyeTmin in scene.cpp; docs/scene-format.md's rule 1).
     double eyeTmin = 0;
+    int cameraMedium = -1;    // chapter 13: the material whose medium the eye is in (camera.medium), -1: air
     glm::dvec3 origin{0};     // where the file's origin lies in this scene's space (toCameraSpace): file = p - origin
 };
 
@@ -85,6 +89,10 @@ struct Scene {
 // applies (the format's transforms are rotations times scales, whose columns
 // are orthogonal), an ellipsoid's longest semi-axis.
 double largestStretch(const glm::dmat4& transform);
+
+// Chapter 13: the Beer-Lambert coefficient of a medium in which white light
+// keeps `color` after `distance` (glTF's KHR_materials_volume): -ln(color) / distance.
+glm::dvec3 absorptionOf(const glm::dvec3& color, double distance);
 
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
 // the file and the key for a missing file, bad JSON, an unknown key, a
@@ -94,6 +102,10 @@ Scene loadScene(const std::string& path);
 // Chapters before 12 draw spheres and quads only: throws InputError naming
 // the first mesh object and chapter 12.
 void refuseMeshes(const Scene& scene);
+
+// Chapter 13's medium stack holds material indices in 8 bits (media.glsl):
+// throws InputError naming the first transmitting material past index 254.
+void refuseUnstackableMedia(const Scene& scene);
 
 // The rendering space of the ray tracing chapters (04 on), as PBRT-v4 does:
 // the whole scene translated, in double precision, so that the camera sits

@@ -213,7 +213,10 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     j["materials"][0] = {
         {"name", "tinted"},
         {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}, {"metallicFactor", 0.25}, {"roughnessFactor", 0.5}}},
-        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}};
+        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}},
+                        {"KHR_materials_ior", {{"ior", 1.33}}},
+                        {"KHR_materials_volume",  // chapter 13's absorption
+                         {{"thicknessFactor", 0.1}, {"attenuationDistance", 0.5}, {"attenuationColor", {0.5, 0.25, 1}}}}}}};
     fs::copy_file(meshDir() + "/wine_glass.bin", dir + "/wine_glass.bin", fs::copy_options::overwrite_existing);
     writeText(dir + "/tinted.gltf", j.dump());
     rg::MeshFile file = rg::loadMeshFile(dir + "/tinted.gltf");
@@ -225,6 +228,8 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_EQ(f.roughness, 0.5);
     EXPECT_EQ(f.transmission, 0.75);
     EXPECT_EQ(f.ior, 1.33);
+    EXPECT_EQ(f.attenuationDistance, 0.5);
+    EXPECT_EQ(f.attenuationColor, glm::dvec3(0.5, 0.25, 1));
     ASSERT_EQ(file.parts.size(), 1u);
     EXPECT_EQ(file.parts[0].material, 0);
     // Its mapping onto RayGlass's material (docs/scene-format.md).
@@ -241,6 +246,9 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_EQ(m.transmission, 0.75);
     EXPECT_EQ(m.ior, 1.33);
     EXPECT_NEAR(m.f0, std::pow(0.33 / 2.33, 2), 1e-12);
+    // Beer-Lambert: after 0.5, white keeps the attenuation colour.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(std::exp(-m.absorption[c] * 0.5), f.attenuationColor[c], 1e-12);
+    EXPECT_EQ(m.absorption.b, 0.0);  // a channel of colour 1 is not absorbed
 }
 
 // ---- Textures -------------------------------------------------------------------
