@@ -383,10 +383,10 @@ struct Split {
     double highlight = 1;  // the highlight's share: the opaque part's and a dielectric's F
 };
 
-Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering, double cosI) {
+Split splitAt(const ReferenceSettings& settings, const Material& m, double n1, double n2, double cosI) {
     Split s;
-    s.n1 = entering ? 1.0 : m.ior;
-    s.n2 = entering ? m.ior : 1.0;
+    s.n1 = n1;
+    s.n2 = n2;
     s.reflected = m.reflectivity;
     if (settings.stage >= ReferenceStage::Fresnel) {
         double F = referenceFresnel(settings.fresnelMode, m.f0, cosI, s.n1, s.n2);
@@ -398,6 +398,29 @@ Split splitAt(const ReferenceSettings& settings, const Material& m, bool enterin
     if (settings.stage < ReferenceStage::Fresnel) s.highlight = s.local;  // chapter 08: the thesis's mix
     return s;
 }
+
+// Chapters 08-12: air outside every material.
+Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering, double cosI) {
+    return entering ? splitAt(settings, m, 1.0, m.ior, cosI) : splitAt(settings, m, m.ior, 1.0, cosI);
+}
+
+// Chapter 13's media (written again from the rule on docs/13_real_glass.md,
+// not from media.glsl): the medium at a place is the stack's entry of
+// highest priority, of equal ones the last entered; -1 is air.
+int mediumOf(const Scene& scene, const MediumStack& media) {
+    int best = -1, bestPriority = -1;
+    for (size_t k = media.materials.size(); k-- > 0;) {
+        int priority = scene.materials[media.materials[k]].priority;
+        if (priority > bestPriority) best = int(media.materials[k]), bestPriority = priority;
+    }
+    return best;
+}
+double iorOf(const Scene& scene, int medium) { return medium < 0 ? 1.0 : scene.materials[medium].ior; }
+glm::dvec3 absorptionOf(const Scene& scene, int medium) {
+    return medium < 0 ? glm::dvec3(0) : scene.materials[medium].absorption;
+}
+constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
+constexpr int kMaxPasses = 256;    // as the GPU's MAX_PASSES
 
 // Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing
 // the ray; false under total internal reflection.
@@ -458,8 +481,20 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, co
 
 glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
                                        const glm::dvec3& direction, int depth, const glm::dvec3& throughput) const {
+    int passes = 0;
+    return radiance(settings, origin, direction, depth, throughput, MediumStack{}, passes);
+}
+
+glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
+                                       const glm::dvec3& direction, int depth, const glm::dvec3& throughput,
+                                       const MediumStack& media, int& passes) const {
     ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);  // depth 0: a camera ray
-    if (hit.t < 0) return sky(direction);
+    bool nested = settings.stage == ReferenceStage::Media;
+    // Chapter 13: Beer-Lambert along the way, in the medium the ray is in.
+    glm::dvec3 kept(1), sigma = nested ? absorptionOf(scene_, mediumOf(scene_, media)) : glm::dvec3(0);
+    for (int c = 0; c < 3; ++c)
+        if (sigma[c] > 0) kept[c] = hit.t < 0 ? 0.0 : std::exp(-sigma[c] * hit.t);
+    if (hit.t < 0) return kept * sky(direction);
     glm::dvec3 n, ns;  // toward the ray's origin: geometric, shading
     facingNormals(hit, direction, n, ns);
     if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
@@ -470,28 +505,51 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
 
     // How the light divides at this surface (chapters 08-10).
     bool entering = hit.frontFace;
-    Split split = splitAt(settings, m, entering, glm::dot(ns, v));
+    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;  // air outside (chapter 10)
+    const glm::dvec3 arriving = throughput * kept;
+    MediumStack beyond = media;  // chapter 13: the media of a ray that crosses here
+    if (nested && m.transmission > 0) {
+        uint32_t material = scene_.objects[hit.object].material;
+        int from = mediumOf(scene_, media);
+        if (entering) {
+            beyond.materials.push_back(material);
+            if (beyond.materials.size() > kMediaDepth) beyond.materials.erase(beyond.materials.begin());
+        } else {
+            auto it = std::find(beyond.materials.rbegin(), beyond.materials.rend(), material);
+            if (it != beyond.materials.rend()) beyond.materials.erase(std::next(it).base());
+            else from = int(material);  // leaving what it never entered: chapter 10's view
+        }
+        int to = mediumOf(scene_, beyond);
+        n1 = iorOf(scene_, from), n2 = iorOf(scene_, to);
+        if (n1 == n2 && absorptionOf(scene_, from) == absorptionOf(scene_, to)) {  // no surface here
+            if (passes++ >= kMaxPasses) return glm::dvec3(0);
+            return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction, depth, arriving, beyond, passes);
+        }
+    }
+    Split split = splitAt(settings, m, n1, n2, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
     if (split.highlight > 0) color += localShading(settings, m, p, hit.error, n, ns, v, split.local, split.highlight);
-    if (depth >= settings.maxDepth) return color;
+    if (depth >= settings.maxDepth) return kept * color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
-        glm::dvec3 t = throughput * w;
+        glm::dvec3 t = arriving * w;
         return settings.stage < ReferenceStage::Refraction || std::max({t.r, t.g, t.b}) >= kMinThroughput;
     };
     glm::dvec3 t;
     if (refracted > 0 && strongEnough(refracted)) {
         if (refractSides(direction, n, ns, split.n1, split.n2, t))
-            color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, depth + 1, throughput * refracted);
+            color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t, depth + 1, arriving * refracted,
+                                          beyond, passes);
         else
             reflected += refracted;  // a mesh's flat triangle reflects it all
     }
     if (reflected > 0 && strongEnough(reflected)) {
         glm::dvec3 r = reflectSides(direction, n, ns);
-        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r, depth + 1, throughput * reflected);
+        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r, depth + 1, arriving * reflected,
+                                      media, passes);
     }
-    return color;
+    return kept * color;
 }
 
 glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
@@ -499,6 +557,12 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     glm::dvec3 origin, direction;
     cameraRay(x, y, width, height, origin, direction);
     if (stdError) *stdError = 0;
+    if (settings.stage == ReferenceStage::Media) {  // chapter 13: the eye may be inside a medium
+        MediumStack eye;
+        if (scene_.cameraMedium >= 0) eye.materials.push_back(uint32_t(scene_.cameraMedium));
+        int passes = 0;
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes);
+    }
     if (settings.stage != ReferenceStage::Rough) return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
 
     // Chapter 11: the first surface's mirror branch becomes the mean over a

@@ -11,7 +11,14 @@
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
-enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10, Rough = 11 };
+enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10, Rough = 11,
+                            Media = 13 };  // chapter 12 renders Rough on meshes
+
+// Chapter 13: the media a ray is inside, the last entered at the back
+// (the GPU's media.glsl keeps four; so does this).
+struct MediumStack {
+    std::vector<uint32_t> materials;
+};
 
 struct ReferenceSettings {
     ReferenceStage stage = ReferenceStage::Normals;
@@ -56,6 +63,10 @@ public:
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
                         int depth, const glm::dvec3& throughput) const;
+    // Chapter 13: the same inside `media`; `passes` counts the surfaces
+    // crossed where no medium changes (at most 256 per camera ray, as the GPU).
+    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
+                        int depth, const glm::dvec3& throughput, const MediumStack& media, int& passes) const;
     // n: the geometric normal (shadow rays leave along it); ns: the shading
     // normal. Ambient and diffuse light are weighted by `local`, the
     // highlight by `highlight` (a dielectric's share F of it, chapter 09 on).

@@ -4,9 +4,11 @@
 #ifndef RAY_TREE_GLSL
 #define RAY_TREE_GLSL
 #include "fresnel.glsl"
+#include "media.glsl"
 
 #define MAX_DEPTH 8                // --depth is at most this
 #define MIN_THROUGHPUT 1e-4        // branches carrying less light are not traced
+#define MAX_PASSES 256             // chapter 13: surfaces a tree may cross where no medium changes
 
 // [region split]
 struct Split {
@@ -15,9 +17,9 @@ struct Split {
     float eta;                          // n1 / n2 for Snell's law
 };
 
-Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
-    float ior = m.params.w, transmission = m.params.z;
-    float n1 = entering ? 1.0 : ior, n2 = entering ? ior : 1.0;  // leaving: the ratio inverts
+// Going from index n1 into n2.
+Split splitBetween(GpuMaterial m, float n1, float n2, vec3 n, vec3 direction) {
+    float transmission = m.params.z;
     float F = fresnel(push.fresnelMode, m.extra.x, dot(n, -direction), n1, n2);  // 1 under total internal reflection
     Split s;
     s.reflected = transmission * F + (1.0 - transmission) * m.params.y;
@@ -26,6 +28,13 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     s.highlight = s.local + transmission * F;  // a light's glint is reflection too
     s.eta = n1 / n2;
     return s;
+}
+
+// Chapters 09-12: every glass has air outside (chapter 13: media.glsl).
+Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
+    float ior = m.params.w;
+    return entering ? splitBetween(m, 1.0, ior, n, direction)   // air into the glass
+                    : splitBetween(m, ior, 1.0, n, direction);  // leaving: the ratio inverts
 }
 // [end]
 
@@ -75,12 +84,14 @@ struct Tree {
     int top;
     vec3 radiance;
     uint rays;
+    uint passes;  // chapter 13: surfaces crossed without a change of medium (MAX_PASSES)
 };
 Tree tree;
 
 void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
-    tree.stack[0] = Branch(origin, depth, direction, kInfinity, throughput, 0.0);
+    tree.stack[0] = Branch(origin, depth, direction, kInfinity, throughput, 0u);  // in air (chapter 13)
     tree.top = 1;
+    tree.passes = 0u;
     tree.radiance = vec3(0.0);
     tree.rays = rays;
 }
@@ -91,8 +102,12 @@ void growBranch() {
     Branch b = tree.stack[--tree.top];
     traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);  // depth 0: a camera ray
     ++tree.rays;
+    vec3 throughput = b.throughput;
+#ifdef NESTED_MEDIA
+    throughput *= transmittance(b.media, payload.t);  // chapter 13: absorbed on the way (Beer-Lambert)
+#endif
     if (payload.t < 0.0) {
-        tree.radiance += b.throughput * payload.radiance;
+        tree.radiance += throughput * payload.radiance;
         return;
     }
     GpuMaterial m = hitMaterial();  // a mesh's texture tints it (ch 12)
@@ -102,24 +117,41 @@ void growBranch() {
     float e = payload.error;
     float radius = objects[payload.object].radius;  // 0: not a sphere
     bool entering = payload.frontFace == 1u;  // from the hit kind on meshes (chapter 12)
-    Split s = splitAt(m, entering, ns, b.direction);
+    float n1 = entering ? 1.0 : m.params.w, n2 = entering ? m.params.w : 1.0;  // air outside (ch 10)
+    uint beyond = b.media;  // the media of a ray that crosses here (chapter 13)
+    // [region media]
+#ifdef NESTED_MEDIA
+    if (m.params.z > 0.0) {  // chapter 13: a medium's surface; which two media meet here?
+        Boundary boundary = boundaryAt(b.media, objects[payload.object].material, entering);
+        if (!boundary.real) {  // no surface: the ray goes on into its new media, as deep as before
+            vec3 o = secondaryOrigin(p, e, -n);
+            float tMax = entering ? insideReach(o, p, radius) : kInfinity;
+            if (tree.passes++ < MAX_PASSES)
+                tree.stack[tree.top++] = Branch(o, b.depth, b.direction, tMax, throughput, boundary.beyond);
+            return;
+        }
+        n1 = boundary.n1, n2 = boundary.n2, beyond = boundary.beyond;
+    }
+#endif
+    // [end]
+    Split s = splitBetween(m, n1, n2, ns, b.direction);
     if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
-        tree.radiance += b.throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local, s.highlight, tree.rays);
+        tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local, s.highlight, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
-    vec3 tr = b.throughput * s.refracted, rf = b.throughput * s.reflected;
+    vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
         vec3 t = refractedDirection(b.direction, n, ns, s.eta), o = secondaryOrigin(p, e, -n);
         float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
-        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, b.depth + 1u, t, tMax, tr, 0.0);
+        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, b.depth + 1u, t, tMax, tr, beyond);
         else rf += tr;  // only a mesh's flat triangle can reflect it all (sides above)
     }
     // [end]
     if (maxComponent(rf) >= MIN_THROUGHPUT) {
         vec3 o = secondaryOrigin(p, e, n);
         float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
-        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflectedDirection(b.direction, n, ns), tMax, rf, 0.0);
+        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflectedDirection(b.direction, n, ns), tMax, rf, b.media);
     }
 }
 
