@@ -35,6 +35,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath(chapter.scene) : opts.scene));
         double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
         if (!chapter.meshes) refuseMeshes(scene);
+        if (chapter.stage == ReferenceStage::Media) refuseUnstackableMedia(scene);
         App app;
         initApp(app, opts, chapter.title);
         // What grows with the image: the ray counts (4 bytes a pixel) and

@@ -6,6 +6,11 @@
 //   prism.obj        60-degree prism, 30 mm sides, 30 mm tall (flat faces)
 //   slab.obj         glass slab 40 x 30 x 10 mm (flat faces)
 //   wine_glass.gltf  a lathe-turned wine glass, with its glass material (+ .bin)
+//   tumbler.obj      a drinking glass: 60 mm across, 90 mm tall, 2.5 mm wall,
+//                    8 mm base, its inner corner rounded (3 mm)
+//   water.obj        the water in it, 52 mm deep: 0.3 mm into the glass all round,
+//                    so no film of air is left between (chapter 13's priorities)
+//   ice_cube.obj     a 22 mm ice cube
 //   icosphere_N.obj  the unit icosphere at levels 1-5 (smooth normals)
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
@@ -164,6 +169,32 @@ rg::Mesh wineGlass() {
     return lathe(p, n, 96);
 }
 
+// Chapter 13: a straight-sided drinking glass, one closed profile with creases.
+rg::Mesh tumbler() {
+    std::vector<glm::dvec2> p, n;
+    auto point = [&](double r, double y, double nr, double ny) { p.push_back({r, y}), n.push_back({nr, ny}); };
+    point(0, 0, 0, -1), point(30, 0, 0, -1);        // the base's underside
+    point(30, 0, 1, 0), point(30, 90, 1, 0);        // outside wall
+    point(30, 90, 0, 1), point(27.5, 90, 0, 1);     // rim
+    point(27.5, 90, -1, 0);                         // inside wall, down to
+    // A rounded inner corner, as real glass has: at a right-angled crease a ray
+    // through the edge itself takes either face's normal, and its paths differ.
+    arc(p, n, {24.5, 11}, 3, 0, -kPi / 2, 8, -1);
+    point(0, 8, 0, 1);                              // the base's top
+    return lathe(p, n, 128);
+}
+
+// The water in the tumbler: a closed cylinder from 0.3 mm inside the base
+// to its surface at y = 60 mm, 0.3 mm into the wall.
+rg::Mesh water() {
+    std::vector<glm::dvec2> p, n;
+    auto point = [&](double r, double y, double nr, double ny) { p.push_back({r, y}), n.push_back({nr, ny}); };
+    point(0, 7.7, 0, -1), point(27.8, 7.7, 0, -1);
+    point(27.8, 7.7, 1, 0), point(27.8, 60, 1, 0);
+    point(27.8, 60, 0, 1), point(0, 60, 0, 1);
+    return lathe(p, n, 128);
+}
+
 rg::Mesh torus(double major, double minor, int around, int across) {
     rg::Mesh m;
     for (int i = 0; i < around; ++i)
@@ -302,6 +333,9 @@ int main(int argc, char** argv) {
         writeText(dir + "/prism.obj", toObj(prism(30, 30), "60-degree prism, 30 mm sides, 30 mm tall, standing on y = 0"));
         writeText(dir + "/slab.obj", toObj(box({40, 10, 30}), "glass slab 40 x 10 x 30 mm, centred"));
         writeGltf(dir + "/wine_glass.gltf", wineGlass(), glassMaterial("glass", 1.5), false);
+        writeText(dir + "/tumbler.obj", toObj(tumbler(), "drinking glass, 60 mm across, 90 mm tall, 2.5 mm wall, 8 mm base, 3 mm inner fillet"));
+        writeText(dir + "/water.obj", toObj(water(), "the water in tumbler.obj: y 7.7 to 60 mm, radius 27.8 mm"));
+        writeText(dir + "/ice_cube.obj", toObj(box({22, 22, 22}), "ice cube, 22 mm, centred"));
         for (int level = 1; level <= 5; ++level)
             writeText(dir + "/icosphere_" + std::to_string(level) + ".obj",
                       toObj(rg::icosphere(level), "unit icosphere, level " + std::to_string(level)));

@@ -14,7 +14,7 @@ build=build-asan
 [ "${1:-}" = "--build" ] && build="$2"
 
 chapters=(01_vulkan_setup 02_synchronization 03_acceleration_structures 04_raygen_miss 05_ambient 06_diffuse
-          07_specular 08_reflection 09_fresnel 10_refraction 11_rough 12_triangle_meshes)
+          07_specular 08_reflection 09_fresnel 10_refraction 11_rough 12_triangle_meshes 13_real_glass)
 units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults test_12_triangle_meshes)
 echo "== sanitizer build in $build (ASan + UBSan, -O1)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON >/dev/null ||

@@ -1,0 +1,264 @@
+// Chapter 13, real glass, checked against optics (the CPU reference shares
+// the media rule, so these tests use the laws themselves, written here in
+// double): glass in the same glass is no surface; an air bubble in glass
+// reflects totally past the critical angle; a slab transmits Fresnel at
+// both faces times Beer-Lambert; with nothing nested chapter 13 is chapter
+// 10; and the scene keys of media are checked.
+#include "harness.h"
+
+#include <cmath>
+#include <fstream>
+#include <glm/glm.hpp>
+
+#include "output.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unpolarized Fresnel reflectance from index n1 into n2 at cos(incidence) c.
+double fresnelEquations(double c, double n1, double n2) {
+    double sinT = n1 / n2 * std::sqrt(1 - c * c);
+    if (sinT >= 1) return 1;
+    double cosT = std::sqrt(1 - sinT * sinT);
+    double rs = (n1 * c - n2 * cosT) / (n1 * c + n2 * cosT), rp = (n2 * c - n1 * cosT) / (n2 * c + n1 * cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
+    std::string path = dir + "/" + name + "_scene.json";
+    std::ofstream(path) << scene.dump(1);
+    return path;
+}
+
+rg::FloatImage render(const char* exe, const std::string& scene, const std::string& out, int width, int height,
+                      std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {"--headless", "--validation", "--scene", scene, "--width", std::to_string(width),
+                                     "--height", std::to_string(height), "--frames", "1", "--output", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    rgtest::RunResult r = rgtest::run(exe, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return rg::readPfm(out);
+}
+
+// Pixels whose display value differs by more than 1/255, as a share.
+double shareOff(const rg::FloatImage& a, const rg::FloatImage& b) {
+    EXPECT_EQ(a.rgba.size(), b.rgba.size());
+    if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return 1;
+    size_t off = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(rgtest::display8(a.rgba[i + c]) - rgtest::display8(b.rgba[i + c])) > 1) {
+                ++off;
+                break;
+            }
+    return double(off) / double(a.rgba.size() / 4);
+}
+
+// The camera ray through pixel (x, y)'s centre (docs/04_raygen_miss.md's camera).
+glm::dvec3 cameraDirection(const glm::dvec3& eye, const glm::dvec3& lookAt, double fovDeg, int x, int y, int width,
+                           int height) {
+    glm::dvec3 forward = glm::normalize(lookAt - eye), right = glm::normalize(glm::cross(forward, {0, 1, 0}));
+    glm::dvec3 up = glm::cross(right, forward);
+    double tanHalf = std::tan(fovDeg / 2 * kPi / 180), aspect = double(width) / height;
+    return glm::normalize(forward + ((x + 0.5) / width * 2 - 1) * tanHalf * aspect * right +
+                          (1 - (y + 0.5) / height * 2) * tanHalf * up);
+}
+
+nlohmann::json glass(double ior, nlohmann::json extra = nlohmann::json::object()) {
+    nlohmann::json m = {{"ka", 0}, {"kd", 0}, {"ks", 0.8}, {"shininess", 200}, {"transmission", 1}, {"ior", ior}};
+    m.update(extra);
+    return m;
+}
+
+// Glass inside the same glass has no surface between them: adding it
+// changes no pixel (chapter 10, which puts air outside each, shows a ball).
+// Several sizes and placements, the same material and an equal one.
+TEST(Media, GlassInTheSameGlassIsNoSurface) {
+    std::string dir = rgtest::outputDir("13_same_glass");
+    nlohmann::json base = {
+        {"camera", {{"position", {0, 0.4, 4}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 40}}},
+        {"ambient", 0.1},
+        {"lights", {{{"position", {-3, 4, 4}}, {"intensity", 0.8}}}},
+        {"materials", {{"bk7", glass(1.5168)}, {"bk7_too", glass(1.5168)},
+                       {"floor", {{"kd", {0.6, 0.5, 0.4}}}}}},
+        {"objects", {{{"type", "quad"}, {"center", {0, -1.01, 0}}, {"u", {4, 0, 0}}, {"v", {0, 0, 4}}, {"material", "floor"}},
+                     {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "bk7"}}}}};
+    std::string single = writeScene(dir, "single", base);
+    rg::FloatImage one13 = render(RG_EXE_13, single, dir + "/single13.pfm", 160, 120);
+    rg::FloatImage one10 = render(RG_EXE_12, single, dir + "/single10.pfm", 160, 120, {"--fresnel", "exact", "--depth", "8"});
+    struct Inner { glm::dvec3 centre; double radius; const char* material; };
+    for (const Inner& inner : {Inner{{0, 0, 0}, 0.5, "bk7"}, Inner{{0.3, 0.2, 0.1}, 0.4, "bk7_too"},
+                               Inner{{-0.4, -0.3, 0.3}, 0.3, "bk7"}}) {
+        SCOPED_TRACE("inner ball r " + std::to_string(inner.radius) + " of " + inner.material);
+        nlohmann::json nested = base;
+        nested["objects"].push_back({{"type", "sphere"}, {"center", {inner.centre.x, inner.centre.y, inner.centre.z}},
+                                     {"radius", inner.radius}, {"material", inner.material}});
+        std::string path = writeScene(dir, "nested", nested);
+        EXPECT_EQ(shareOff(render(RG_EXE_13, path, dir + "/nested13.pfm", 160, 120), one13), 0.0);
+        // Chapter 10's rule (in chapter 12, which takes the same scenes) sees a ball.
+        EXPECT_GT(shareOff(render(RG_EXE_12, path, dir + "/nested10.pfm", 160, 120, {"--fresnel", "exact", "--depth", "8"}),
+                           one10),
+                  0.01);
+    }
+}
+
+// From inside glass (n = 1.5168) onto an air bubble: below the critical
+// angle asin(1 / n) = 41.25 degrees part of the light leaves into the air,
+// above it all is reflected. The eye is in the glass (camera.medium), the
+// sky is white and the depth limit 1, so a pixel holds exactly what the
+// bubble reflects: F of its angle of incidence, which the test finds from
+// the pixel's ray and the sphere alone.
+TEST(Media, ABubbleInGlassReflectsTotallyPastTheCriticalAngle) {
+    std::string dir = rgtest::outputDir("13_bubble");
+    const double n = 1.5168, r = 1;
+    const glm::dvec3 eye(0, 0, 5), centre(0, 0, 0);
+    const int width = 320, height = 320;
+    const double fov = 30;
+    nlohmann::json scene = {
+        {"camera", {{"position", {eye.x, eye.y, eye.z}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", fov}, {"medium", "bk7"}}},
+        {"sky", {{"top", 1}, {"horizon", 1}, {"bottom", 1}}},
+        {"ambient", 0},
+        {"materials", {{"bk7", glass(n)}, {"air", glass(1.0, {{"priority", 1}})}}},
+        {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", r}, {"material", "air"}}}}};
+    rg::FloatImage image = render(RG_EXE_13, writeScene(dir, "bubble", scene), dir + "/bubble.pfm", width, height,
+                                  {"--depth", "1"});
+    ASSERT_EQ(image.rgba.size(), size_t(width) * height * 4);
+    double critical = std::asin(1 / n) * 180 / kPi;
+    EXPECT_NEAR(critical, 41.25, 0.005);
+    int below = 0, above = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            glm::dvec3 d = cameraDirection(eye, {0, 0, 0}, fov, x, y, width, height);
+            glm::dvec3 f = eye - centre;
+            double b = glm::length(f - glm::dot(f, d) * d);  // the ray's distance from the centre
+            if (b >= r) continue;
+            double incidence = std::asin(b / r) * 180 / kPi;
+            float value = image.rgba[4 * (size_t(y) * width + x)];
+            if (std::abs(incidence - 41.0) < 0.1) {  // leaves: F < 1, as Fresnel says
+                double F = fresnelEquations(std::cos(incidence * kPi / 180), n, 1.0);
+                EXPECT_NEAR(value, F, 0.01 * F) << "at " << incidence << " degrees";
+                EXPECT_LT(value, 0.8);
+                ++below;
+            } else if (std::abs(incidence - 41.5) < 0.1) {  // totally reflected
+                EXPECT_NEAR(value, 1.0, 1e-3) << "at " << incidence << " degrees";
+                ++above;
+            }
+        }
+    EXPECT_GT(below, 20);
+    EXPECT_GT(above, 20);
+}
+
+// A flat box of vertices in world space, wound counter-clockwise from outside.
+std::string slabObj(const glm::dvec3& centre, const glm::dvec3& normal, double halfWidth, double thickness) {
+    glm::dvec3 t1 = glm::normalize(glm::cross(normal, {1, 0, 0})), t2 = glm::cross(normal, t1);
+    std::string obj;
+    auto vertex = [&](const glm::dvec3& v) { obj += "v " + std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.z) + "\n"; };
+    glm::dvec3 axes[3] = {halfWidth * t1, halfWidth * t2, thickness / 2 * normal};
+    for (int c = 0; c < 8; ++c)
+        vertex(centre + (c & 1 ? 1.0 : -1.0) * axes[0] + (c & 2 ? 1.0 : -1.0) * axes[1] + (c & 4 ? 1.0 : -1.0) * axes[2]);
+    std::vector<glm::dvec3> corners;
+    for (int c = 0; c < 8; ++c)
+        corners.push_back(centre + (c & 1 ? 1.0 : -1.0) * axes[0] + (c & 2 ? 1.0 : -1.0) * axes[1] + (c & 4 ? 1.0 : -1.0) * axes[2]);
+    int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+    for (auto& f : faces) {
+        glm::dvec3 mid = (corners[f[0]] + corners[f[2]]) / 2.0;
+        bool outward = glm::dot(glm::cross(corners[f[1]] - corners[f[0]], corners[f[2]] - corners[f[0]]), mid - centre) > 0;
+        int a = f[0] + 1, b = f[1] + 1, c = f[2] + 1, d = f[3] + 1;
+        if (!outward) std::swap(b, d);
+        obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
+        obj += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+    }
+    return obj;
+}
+
+// A tinted glass slab seen at an angle transmits (1 - F) at the face it
+// enters, (1 - F) at the face it leaves, and exp(-sigma L) on the way,
+// L = thickness / cos(refraction angle): per channel, within 0.5 %, for
+// two thicknesses and two angles. The sky is black above the horizon and
+// -y below, so a reflection adds nothing and the transmitted ray (parallel
+// to the camera ray) brings -d.y; --depth 2 ends the path before a second
+// internal reflection could come out.
+TEST(Media, ASlabTransmitsFresnelAtBothFacesAndBeerLambert) {
+    std::string dir = rgtest::outputDir("13_slab");
+    const double n = 1.5168;
+    const glm::dvec3 color(0.9, 0.5, 0.2);
+    const double distance = 0.3;
+    const glm::dvec3 eye(0, 3, 3), lookAt(0, 0, 0);
+    const int width = 64, height = 64;
+    const double fov = 20;
+    for (double thickness : {0.1, 0.4})
+        for (double tilt : {0.0, 35.0}) {
+            SCOPED_TRACE("thickness " + std::to_string(thickness) + ", tilt " + std::to_string(tilt));
+            glm::dvec3 view = glm::normalize(eye - lookAt), side(1, 0, 0);
+            double a = tilt * kPi / 180;
+            glm::dvec3 normal = glm::normalize(std::cos(a) * view + std::sin(a) * side);
+            std::ofstream(dir + "/slab.obj") << slabObj(lookAt, normal, 1.5, thickness);
+            nlohmann::json scene = {
+                {"camera", {{"position", {eye.x, eye.y, eye.z}}, {"look_at", {lookAt.x, lookAt.y, lookAt.z}}, {"fov_y_deg", fov}}},
+                {"sky", {{"top", 0}, {"horizon", 0}, {"bottom", 1}}},
+                {"ambient", 0},
+                {"materials", {{"tinted", glass(n, {{"attenuation_color", {color.r, color.g, color.b}},
+                                                    {"attenuation_distance", distance}})}}},
+                {"objects", {{{"type", "mesh"}, {"file", "slab.obj"}, {"material", "tinted"}}}}};
+            rg::FloatImage image = render(RG_EXE_13, writeScene(dir, "slab", scene), dir + "/slab.pfm", width, height,
+                                          {"--depth", "2"});
+            ASSERT_EQ(image.rgba.size(), size_t(width) * height * 4);
+            for (int y = 24; y < 40; y += 5)
+                for (int x = 24; x < 40; x += 5) {
+                    glm::dvec3 d = cameraDirection(eye, lookAt, fov, x, y, width, height);
+                    double cosI = -glm::dot(d, normal), sinT = std::sqrt(1 - cosI * cosI) / n;
+                    double cosT = std::sqrt(1 - sinT * sinT);
+                    double F1 = fresnelEquations(cosI, 1.0, n), F2 = fresnelEquations(cosT, n, 1.0);
+                    for (int c = 0; c < 3; ++c) {
+                        double sigma = -std::log(color[c]) / distance;
+                        double expected = (1 - F1) * (1 - F2) * std::exp(-sigma * thickness / cosT) * -d.y;
+                        EXPECT_NEAR(image.rgba[4 * (size_t(y) * width + x) + c], expected, 0.005 * expected)
+                            << "pixel " << x << "," << y << " channel " << c;
+                    }
+                }
+        }
+}
+
+// With no medium inside another and none absorbing, chapter 13 is chapter
+// 10 with exact Fresnel: its default glass scene and the thesis's scene.
+TEST(Media, WithNothingNestedItIsChapter10) {
+    std::string dir = rgtest::outputDir("13_as_10");
+    for (const char* name : {"glass_sphere", "default"}) {
+        SCOPED_TRACE(name);
+        std::string scene = std::string(RG_SOURCE_DIR "/assets/scenes/") + name + ".json";
+        rg::FloatImage a = render(RG_EXE_13, scene, dir + "/13.pfm", 160, 90, {"--depth", "6"});
+        rg::FloatImage b = render(RG_EXE_10, scene, dir + "/10.pfm", 160, 90, {"--depth", "6", "--fresnel", "exact"});
+        EXPECT_LE(shareOff(a, b), 0.001);
+    }
+}
+
+// Bad media keys: one line naming the key, exit 2, no output written.
+TEST(Media, BadMediumKeysAreOneClearLine) {
+    std::string dir = rgtest::outputDir("13_bad_keys");
+    struct Case { nlohmann::json material; nlohmann::json camera; std::string says; };
+    nlohmann::json plainCamera = {{"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}};
+    nlohmann::json inOpaque = plainCamera;
+    inOpaque["medium"] = "m";
+    nlohmann::json inNothing = plainCamera;
+    inNothing["medium"] = "nothing";
+    for (const Case& c : {Case{glass(1.5, {{"attenuation_color", {1, 0.5, 0.5}}}), plainCamera,
+                               "materials.m.attenuation_distance: missing"},
+                          Case{glass(1.5, {{"attenuation_color", {1, 0, 0.5}}, {"attenuation_distance", 1}}), plainCamera,
+                               "materials.m.attenuation_color"},
+                          Case{glass(1.5, {{"priority", 1.5}}), plainCamera, "materials.m.priority: must be a whole number"},
+                          Case{{{"kd", 0.5}}, inOpaque, "camera.medium: must name a material that transmits"},
+                          Case{glass(1.5), inNothing, "camera.medium: no material named \"nothing\""}}) {
+        nlohmann::json scene = {{"camera", c.camera},
+                                {"materials", {{"m", c.material}}},
+                                {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "m"}}}}};
+        rgtest::RunResult r = rgtest::run(RG_EXE_13, {"--headless", "--scene", writeScene(dir, "bad", scene), "--output",
+                                                      dir + "/x.png"});
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_FALSE(std::ifstream(dir + "/x.png").good());
+    }
+}
+
+}  // namespace
