@@ -6,6 +6,7 @@
   10_ray_tree.svg     chapter 10's ray tree through a glass sphere (n = 1.517), traced here exactly
   10_inside_reach.svg chapter 10's tMax for a ray inside a sphere, and the boxes it skips
   11_lobe.svg         64 directions of chapter 11's lobe: the scrambled Sobol points, mapped
+  13_absorption.svg   Beer-Lambert in chapter 13's amber glass: what each channel keeps against thickness
 
     tools/figures.py            write them
     tools/figures.py --check    exit 1 if a file differs from what this script draws (ctest: docs)
@@ -46,6 +47,10 @@ class Svg:
 
     def circle(self, x, y, r, fill="none", stroke="#333", width=1.5):
         self.add(f"<circle cx='{x:.1f}' cy='{y:.1f}' r='{r:.1f}' fill='{fill}' stroke='{stroke}' stroke-width='{width}'/>")
+
+    def polyline(self, points, color="#333", width=1.5):
+        pts = " ".join(f"{x:.1f},{y:.1f}" for x, y in points)
+        self.add(f"<polyline points='{pts}' fill='none' stroke='{color}' stroke-width='{width}'/>")
 
     def svg(self):
         head = (f"<svg xmlns='http://www.w3.org/2000/svg' width='{self.w}' height='{self.h}' "
@@ -368,8 +373,55 @@ def lobe():
     return s.svg()
 
 
+def srgb(linear):
+    c = min(max(linear, 0.0), 1.0)
+    return 12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
+
+
+def absorption():
+    """Beer-Lambert for assets/scenes/real_glass.json's amber: attenuation_color c after distance d_c."""
+    color, dc = (0.85, 0.45, 0.12), 0.4
+    sigma = [-math.log(c) / dc for c in color]
+    s = Svg(760, 356)
+    s.text(20, 24, "Beer-Lambert: what white light keeps inside the amber glass, T = exp(-sigma d)",
+           weight="bold")
+    s.text(20, 44, "attenuation_color (0.85, 0.45, 0.12) after attenuation_distance 0.4: "
+           "sigma = -ln(c) / 0.4 = (%.2f, %.2f, %.2f) per unit" % tuple(sigma), size=12, color="#444")
+    x0, y0, w, h, dmax = 70.0, 292.0, 440.0, 200.0, 1.2
+    X = lambda d: x0 + w * d / dmax
+    Y = lambda t: y0 - h * t
+    s.line(x0, y0, x0 + w, y0, width=1.2)
+    s.line(x0, y0, x0, y0 - h - 6, width=1.2)
+    for k in range(7):
+        d = 0.2 * k
+        s.line(X(d), y0, X(d), y0 + 5, width=1)
+        s.text(X(d), y0 + 19, f"{d:.1f}", anchor="middle", size=11)
+    for k in range(5):
+        t = 0.25 * k
+        s.line(x0 - 5, Y(t), x0, Y(t), width=1)
+        s.text(x0 - 9, Y(t) + 4, f"{t:.2f}", anchor="end", size=11)
+    s.text(x0 + w / 2, y0 + 38, "thickness d (scene units)", anchor="middle", size=12)
+    s.text(x0 - 52, y0 - h - 14, "T, transmitted", size=12)
+    for sg, name, col in zip(sigma, "RGB", ("#c0392b", "#1e8449", "#2471a3")):
+        s.polyline([(X(d), Y(math.exp(-sg * d))) for d in [dmax * i / 120 for i in range(121)]], color=col,
+                   width=2.2)
+        s.text(X(dmax) + 6, Y(math.exp(-sg * dmax)) + 4, name, color=col, size=12, weight="bold")
+    for d, label in ((0.4, "small ball's diameter: T = c"), (0.8, "large ball's: T = c^2")):
+        s.line(X(d), y0, X(d), Y(1.0), color="#888", width=1, dash="4,4")
+        s.text(X(d) + 4, Y(1.0) - 6 if d < 0.5 else Y(0.92), label, size=11, color="#555")
+    s.text(560, 80, "the colour it leaves", size=12, weight="bold")
+    for k, d in enumerate((0.1, 0.2, 0.4, 0.8, 1.2)):
+        rgb = [round(255 * srgb(math.exp(-sg * d))) for sg in sigma]
+        y = 96 + 40 * k
+        s.rect(560, y, 60, 30, fill="#%02x%02x%02x" % tuple(rgb), stroke="#666")
+        s.text(630, y + 20, f"d = {d:g}", size=12)
+    s.text(20, 346, "Blue is gone first: thicker amber is not only darker but redder. A ray through a ball "
+           "crosses less glass near the rim than through the centre.", size=12, color="#444")
+    return s.svg()
+
+
 FIGURES = {"03_split_order.svg": split_order, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree,
-           "10_inside_reach.svg": inside_reach, "11_lobe.svg": lobe}
+           "10_inside_reach.svg": inside_reach, "11_lobe.svg": lobe, "13_absorption.svg": absorption}
 
 
 def main(argv):
