@@ -415,8 +415,8 @@ int mediumOf(const Scene& scene, const MediumStack& media) {
     }
     return best;
 }
-double iorOf(const Scene& scene, int medium) { return medium < 0 ? 1.0 : scene.materials[medium].ior; }
-glm::dvec3 absorptionOf(const Scene& scene, int medium) {
+double mediumIor(const Scene& scene, int medium) { return medium < 0 ? 1.0 : scene.materials[medium].ior; }
+glm::dvec3 mediumAbsorption(const Scene& scene, int medium) {
     return medium < 0 ? glm::dvec3(0) : scene.materials[medium].absorption;
 }
 constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
@@ -491,7 +491,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);  // depth 0: a camera ray
     bool nested = settings.stage == ReferenceStage::Media;
     // Chapter 13: Beer-Lambert along the way, in the medium the ray is in.
-    glm::dvec3 kept(1), sigma = nested ? absorptionOf(scene_, mediumOf(scene_, media)) : glm::dvec3(0);
+    int here = nested ? mediumOf(scene_, media) : -1;  // -1: air
+    glm::dvec3 kept(1), sigma = mediumAbsorption(scene_, here);
     for (int c = 0; c < 3; ++c)
         if (sigma[c] > 0) kept[c] = hit.t < 0 ? 0.0 : std::exp(-sigma[c] * hit.t);
     if (hit.t < 0) return kept * sky(direction);
@@ -510,7 +511,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     MediumStack beyond = media;  // chapter 13: the media of a ray that crosses here
     if (nested && m.transmission > 0) {
         uint32_t material = scene_.objects[hit.object].material;
-        int from = mediumOf(scene_, media);
+        int from = here;
         if (entering) {
             beyond.materials.push_back(material);
             if (beyond.materials.size() > kMediaDepth) beyond.materials.erase(beyond.materials.begin());
@@ -520,8 +521,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
             else from = int(material);  // leaving what it never entered: chapter 10's view
         }
         int to = mediumOf(scene_, beyond);
-        n1 = iorOf(scene_, from), n2 = iorOf(scene_, to);
-        if (n1 == n2 && absorptionOf(scene_, from) == absorptionOf(scene_, to)) {  // no surface here
+        n1 = mediumIor(scene_, from), n2 = mediumIor(scene_, to);
+        if (n1 == n2 && mediumAbsorption(scene_, from) == mediumAbsorption(scene_, to)) {  // no surface here
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction, depth, arriving, beyond, passes);
         }
