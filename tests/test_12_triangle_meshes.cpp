@@ -3,6 +3,7 @@
 // reference's ray-triangle test directly; the GPU tests run the chapter as
 // a user would (lavapipe in CI, validation on).
 #include "harness.h"
+#include "optics_image.h"
 
 #include "files.h"
 #include "mesh.h"
@@ -588,162 +589,34 @@ TEST(Optics, LensFocusesWhereThickLensOpticsPutsIt) {
 // ---- Optics from the image ------------------------------------------------------
 //
 // The two tests above follow single rays through the reference's hits. These
-// read the same optics off chapter 12's own images. The sky says where each
-// pixel's ray went: its red channel climbs through all 256 codes across a
-// band of the sky (rows for the lens, columns for the prism), its green is
-// 255 there and every other direction is black. Filtering is linear between
-// texel centres, so red / green inverts exactly to a texel position and so
-// to a direction; Fresnel's share of a path scales both channels alike and
-// cancels, and light reflected off the glass goes into the black part.
+// read the same optics off chapter 12's own images (tests/optics_image.h).
 
-// The linear values of the 256 codes, as loadSky decodes them.
-std::vector<double> rampValues() {
-    std::vector<double> v;
-    for (int k = 0; k < 256; ++k) v.push_back(float(rg::srgbToLinear(k / 255.0)));
-    return v;
-}
+nlohmann::json bk7() { return {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5168}}; }
 
-// Where along the ramp (0 ... 255, fractional) a pixel's red / green lies; -1 outside.
-double rampPosition(const float* pixel) {
-    static const std::vector<double> ramp = rampValues();
-    if (!(pixel[1] > 0.05)) return -1;  // the black part of the sky (or the glass hid it)
-    double q = double(pixel[0]) / pixel[1];
-    for (int k = 0; k < 255; ++k)
-        if (q >= ramp[k] && q <= ramp[k + 1]) return k + (q - ramp[k]) / (ramp[k + 1] - ramp[k]);
-    return -1;
-}
-
-// A sky of width x height texels: code(column, row) gives red's code, or -1 for black.
-template <typename F>
-void writeRampSky(const std::string& path, uint32_t width, uint32_t height, F code) {
-    rg::FloatImage sky{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
-    for (uint32_t y = 0; y < height; ++y)
-        for (uint32_t x = 0; x < width; ++x) {
-            int k = code(int(x), int(y));
-            float* p = &sky.rgba[4 * (size_t(y) * width + x)];
-            p[0] = k < 0 ? 0.0f : float(rg::srgbToLinear(k / 255.0));
-            p[1] = k < 0 ? 0.0f : 1.0f;
-            p[2] = 0.0f;
-        }
-    rg::writePng(path, sky);
-}
-
-rg::FloatImage renderOptics(const std::string& scene, uint32_t width, uint32_t height, const std::string& pfm,
-                            const std::string& depth) {
-    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", scene, "--width",
-                                                  std::to_string(width), "--height", std::to_string(height), "--frames",
-                                                  "1", "--depth", depth, "--output", pfm});
-    EXPECT_EQ(r.exitCode, 0) << r.output;
-    return rg::readPfm(pfm);
-}
-
-// Looking back through the lens from a point on its axis, d behind the rear
-// vertex: a ray leaving the eye at slope s leaves the lens at slope
-// m(d) s, where m(d) = D - d / f (the thick lens's ray-transfer matrix, D =
-// 1 - (n - 1) t / (n R)). The view through the lens is magnified by m: the
-// sky's band climbs m times as fast across the lens as without it. m falls
-// linearly with d, by 1/f (f: the effective focal length), and reaches 0,
-// a view of one sky direction, at d = D f: the back focal length. At depth
-// 2 a pixel sees only light that crossed each surface once; deeper, the
-// 0.2 % that reflects twice inside the lens arrives from other directions
-// of the band and blends in (a ghost image: m reads 1.3-6 % low at depth 6).
+// The lens's focal lengths from the magnification through it at three eye
+// distances; at depth 2 (a ghost image blends in deeper).
 TEST(Optics, LensFocalLengthsReadFromTheImage) {
-    std::string dir = rgtest::outputDir("12_lens_image");
-    const uint32_t skyH = 2048, first = skyH / 2 - 128;  // the band: rows 896-1151, 11.25 degrees either side
-    writeRampSky(dir + "/sky.png", 16, skyH, [&](int x, int y) {
-        bool ahead = x >= 4 && x < 12;  // toward -z, where the camera looks
-        return ahead ? std::clamp(y - int(first), 0, 255) : -1;
-    });
-    const uint32_t height = 201;
-    std::vector<double> ds = {10, 20, 30}, ms;
-    for (double d : ds) {
-        // Rays meet the lens within 0.8 mm of its axis: paraxial.
-        double tanHalf = 0.8 / (d + 2.5), fov = 2 * std::atan(tanHalf) * 180 / kPi;
-        nlohmann::json scene = {
-            {"camera", {{"position", {0, 0, 2.5 + d}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", fov}}},
-            {"sky", {{"image", "sky.png"}}}, {"ambient", 0},
-            {"materials", {{"bk7", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5168}}}}},
-            {"objects", {{{"type", "mesh"}, {"file", meshDir() + "/lens.obj"}, {"material", "bk7"},
-                          {"transform", {{"rotate_deg", {90, 0, 0}}}}}}}};  // its axis along z
-        std::string name = dir + "/lens_" + std::to_string(int(d));
-        writeText(name + "_scene.json", scene.dump());
-        rg::FloatImage image = renderOptics(name + "_scene.json", 3, height, name + ".pfm", "2");
-        ASSERT_EQ(image.height, height);
-        // Each row's slope in (tan of its elevation) against the slope it left with.
-        double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
-        for (uint32_t row = 0; row < height; ++row) {
-            double p = rampPosition(&image.rgba[4 * (size_t(row) * 3 + 1)]);
-            ASSERT_GT(p, 0) << "d " << d << " row " << row;
-            double v = (first + p + 0.5) / skyH, elevation = kPi / 2 - v * kPi;
-            double in = (1 - (row + 0.5) / height * 2) * tanHalf, out = std::tan(elevation);
-            sx += in, sy += out, sxx += in * in, sxy += in * out, ++n;
-        }
-        ms.push_back((n * sxy - sx * sy) / (n * sxx - sx * sx));
-    }
-    // m against d: a straight line, slope -1/f, zero at the back focal length.
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, n = double(ds.size());
-    for (size_t i = 0; i < ds.size(); ++i) sx += ds[i], sy += ms[i], sxx += ds[i] * ds[i], sxy += ds[i] * ms[i];
-    double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx), intercept = (sy - slope * sx) / n;
-    double efl = -1 / slope, bfl = -intercept / slope;
+    rgtest::optics::LensReading lens =
+        rgtest::optics::lensFromImage(RG_EXE_12, rgtest::outputDir("12_lens_image"), meshDir(), bk7(), {});
+    ASSERT_EQ(lens.ms.size(), 3u);
     std::printf("lens from the image: magnification %.5f %.5f %.5f at 10, 20, 30 mm; effective focal length %.3f mm "
-                "(optics 49.213), back focal length %.3f mm (optics 47.536)\n", ms[0], ms[1], ms[2], efl, bfl);
-    EXPECT_NEAR(efl, 49.213, 0.01 * 49.213);
-    EXPECT_NEAR(bfl, 47.536, 0.01 * 47.536);
-    for (size_t i = 0; i < ds.size(); ++i) EXPECT_NEAR(ms[i], slope * ds[i] + intercept, 1e-3) << "not a straight line";
+                "(optics 49.213), back focal length %.3f mm (optics 47.536)\n", lens.ms[0], lens.ms[1], lens.ms[2],
+                lens.efl, lens.bfl);
+    EXPECT_NEAR(lens.efl, 49.213, 0.01 * 49.213);
+    EXPECT_NEAR(lens.bfl, 47.536, 0.01 * 47.536);
+    for (size_t i = 0; i < lens.ds.size(); ++i)
+        EXPECT_NEAR(lens.ms[i], lens.slope * lens.ds[i] + lens.intercept, 1e-3) << "not a straight line";
 }
 
-// A thin fan of horizontal rays through the prism near minimum deviation:
-// each pixel's deviation is the direction it left in (read from the sky)
-// minus the one it came in; the smallest over the fan must be the minimum
+// The smallest deviation over a fan through the prism must be the minimum
 // deviation, 38.65 degrees for n = 1.5168.
 TEST(Optics, PrismMinimumDeviationReadFromTheImage) {
-    std::string dir = rgtest::outputDir("12_prism_image");
-    // The band: 256 columns from 95 degrees of longitude (u = 0.5 + lon / 360), 0.117 degrees each.
-    const uint32_t skyW = 3072;
-    const int first = int(std::lround((0.5 + 95.0 / 360) * skyW));
-    writeRampSky(dir + "/sky.png", skyW, 4, [&](int x, int) { return x >= first && x < first + 256 ? x - first : -1; });
-    // make_meshes' prism: apex at z = -r, faces AB and AC either side of it. At
-    // minimum deviation a ray crosses parallel to the base: it meets face AB
-    // at 49.32 degrees, coming in along (sin 70.68, 0, -cos 70.68).
-    const double r = 30 / std::sqrt(3.0), lonIn = 70.6776 * kPi / 180;
-    glm::dvec3 mid(-r * std::sqrt(3.0) / 4, 15, -r / 4);  // the middle of face AB: A (0, -r), B (-r sqrt(3) / 2, r / 2)
-    glm::dvec3 d(std::sin(lonIn), 0, -std::cos(lonIn)), eye = mid - 100.0 * d;
-    const uint32_t width = 161, height = 21;  // the middle row's rays are horizontal
-    double tanHalfX = std::tan(4 * kPi / 180), tanHalfY = tanHalfX * height / width;
-    nlohmann::json scene = {
-        {"camera", {{"position", {eye.x, eye.y, eye.z}}, {"look_at", {mid.x, mid.y, mid.z}},
-                    {"fov_y_deg", 2 * std::atan(tanHalfY) * 180 / kPi}}},
-        {"sky", {{"image", "sky.png"}}}, {"ambient", 0},
-        {"materials", {{"bk7", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5168}}}}},
-        {"objects", {{{"type", "mesh"}, {"file", meshDir() + "/prism.obj"}, {"material", "bk7"}}}}};
-    writeText(dir + "/prism_scene.json", scene.dump());
-    // At the default depth: the light reflected inside leaves through the base, into the black.
-    rg::FloatImage image = renderOptics(dir + "/prism_scene.json", width, height, dir + "/prism.pfm", "6");
-    ASSERT_EQ(image.width, width);
-    double best = 1e9;
-    int bestColumn = -1, seen = 0;
-    std::vector<double> deviation(width, 1e9);
-    for (uint32_t x = 0; x < width; ++x) {
-        double p = rampPosition(&image.rgba[4 * (size_t(height / 2) * width + x)]);  // the middle row
-        if (p < 0) continue;
-        ++seen;
-        double lonOut = ((first + p + 0.5) / skyW - 0.5) * 2 * kPi;
-        double sx = ((x + 0.5) / width * 2 - 1) * tanHalfX;  // the pixel's ray, turned from d by atan(sx)
-        deviation[x] = (lonOut - (lonIn + std::atan(sx))) * 180 / kPi;
-        if (deviation[x] < best) best = deviation[x], bestColumn = int(x);
-    }
-    ASSERT_GT(seen, int(width) * 9 / 10) << "the fan should pass the prism into the band";
-    ASSERT_GT(bestColumn, 0);
-    ASSERT_LT(bestColumn, int(width) - 1) << "the minimum should lie inside the fan";
-    // A parabola through the smallest and its neighbours finds the minimum between pixels.
-    double a = deviation[bestColumn - 1], b = deviation[bestColumn], c = deviation[bestColumn + 1];
-    double minimum = b - (a - c) * (a - c) / (8 * (a - 2 * b + c));
+    rgtest::optics::PrismReading prism =
+        rgtest::optics::prismFromImage(RG_EXE_12, rgtest::outputDir("12_prism_image"), meshDir(), bk7(), {});
     const double n = 1.5168, expected = (2 * std::asin(n * std::sin(kPi / 6)) - kPi / 3) * 180 / kPi;
-    std::printf("prism from the image: minimum deviation %.4f deg at column %d of %u (optics %.4f)\n", minimum,
-                bestColumn, width, expected);
-    EXPECT_NEAR(minimum, expected, 0.05);
-    EXPECT_GT(deviation[0], minimum + 0.05);  // and more at both ends of the fan
-    EXPECT_GT(deviation[width - 1], minimum + 0.05);
+    std::printf("prism from the image: minimum deviation %.4f deg at column %d (optics %.4f)\n", prism.minimum,
+                prism.column, expected);
+    EXPECT_NEAR(prism.minimum, expected, 0.05);
 }
 
 // ---- Instancing and the fuzz pass ------------------------------------------
