@@ -136,7 +136,7 @@ struct GpuMaterial {
     vec4 kd;
     vec4 ks;
     vec4 params;   // shininess, reflectivity, transmission, ior
-    vec4 extra;    // f0, roughness, unused, unused
+    vec4 extra;    // f0, roughness; chapter 13's dispersion: 1 / Abbe number (0: none), GLASS_*
     uvec4 texture; // chapter 12's base colour texture: its first texel in textures[],
                    // width, height (0: none), TEXTURE_* flags
     vec4 medium;   // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
@@ -150,6 +150,34 @@ RG_SIZE(GpuMaterial, 112);
 #define TEXTURE_WRAP_MIRROR 2u
 #define TEXTURE_V_SHIFT 2u    // bits 0-1: u's wrap, bits 2-3: v's
 #define TEXTURE_NEAREST 16u   // magnification NEAREST; else bilinear
+
+// [region glasses]
+// Chapter 13: the glasses a scene names for its dispersion (GpuMaterial::
+// extra.w), each by Sellmeier's equation n^2 = 1 + sum B_i L^2 / (L^2 - C_i),
+// L in micrometres, C_i in square micrometres: B1..B4, C1..C4.
+#define GLASS_NONE 0u          // the Abbe number in extra.z, or no dispersion
+#define GLASS_BK7 1u           // SCHOTT N-BK7 (its datasheet)
+#define GLASS_FUSED_SILICA 2u  // Malitson 1965, 20 C
+#define GLASS_WATER 3u         // Daimon and Masumura 2007, 20 C
+#define GLASS_DIAMOND 4u       // Peter 1923
+#define SELLMEIER_BK7 1.03961212, 0.231792344, 1.01046945, 0.0, \
+                      0.00600069867, 0.0200179144, 103.560653, 1.0
+#define SELLMEIER_FUSED_SILICA 0.6961663, 0.4079426, 0.8974794, 0.0, \
+                      0.0684043 * 0.0684043, 0.1162414 * 0.1162414, 9.896161 * 9.896161, 1.0
+#define SELLMEIER_WATER 0.5684027565, 0.1726177391, 0.02086189578, 0.1130748688, \
+                      0.005101829712, 0.01821153936, 0.02620722293, 10.69792721
+#define SELLMEIER_DIAMOND 0.3306, 4.3356, 0.0, 0.0, 0.1750 * 0.1750, 0.1060 * 0.1060, 1.0, 1.0
+// [end]
+
+// Chapter 13's wavelengths: a path that meets a dispersive surface carries
+// one wavelength, drawn uniformly from this range (nm).
+#define SPECTRUM_MIN_NM 380.0
+#define SPECTRUM_MAX_NM 780.0
+// (MAX - MIN) / the integral of each linear sRGB channel of the CIE 1931
+// matching functions over the range (Wyman, Sloan and Shirley's fit): one
+// wavelength's weight averages to 1 in every channel. test_13_real_glass
+// integrates the fit again and checks these.
+#define SPECTRUM_WEIGHT_SCALE 3.1162108, 3.9394087, 4.1209583
 
 struct GpuLight {
     vec4 position;
@@ -174,7 +202,7 @@ struct RtPush {
     uint fresnelMode;    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter 09)
     uint accumulated;    // frames already averaged into the target (chapter 11)
     float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
-    uint pad0;
+    float wavelength;    // chapter 13: > 0, every path at this wavelength (nm); 0: one drawn per path
     uvec2 treeQueue;     // the tree queue's device address, low and high 32 bits (chapter 10)
 };
 RG_SIZE(RtPush, 40);
@@ -182,13 +210,14 @@ RG_SIZE(RtPush, 40);
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {
     vec3 origin;
-    uint depth;
+    uint depth;       // bounces so far; chapter 13 sets BRANCH_SPECTRAL above them
     vec3 direction;
     float tMax;       // how far its ray can go: twice the radius when it starts inside a sphere
     vec3 throughput;  // the share of the pixel's light this branch carries
     uint media;       // chapter 13: the media the ray is inside (shaders/common/media.glsl)
 };
 RG_SIZE(Branch, 48);
+#define BRANCH_SPECTRAL 0x80000000u  // chapter 13: the branch has met dispersion, its light is one wavelength's
 
 // A pixel whose ray tree goes on past its first hit, queued by chapter 10's
 // first launch for the second.

@@ -345,6 +345,8 @@ MeshFile loadGltf(const std::string& path, bool binary) {
             for (int k = 0; k < 3; ++k)
                 f.attenuationColor[k] = std::clamp(c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : 1.0, 1e-6, 1.0);
         }
+        f.dispersion = extensionNumber(m.extensions, "KHR_materials_dispersion", "dispersion", 0.0);
+        if (!(f.dispersion >= 0 && f.dispersion <= 20)) fail(path, "material " + f.name + ": dispersion is not in [0, 20]");
         file.materials.push_back(f);
     }
     AccessorReader read{model, path};

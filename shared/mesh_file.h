@@ -24,6 +24,7 @@ struct FileMaterial {
     double ior = 1.5;           // KHR_materials_ior
     glm::dvec3 attenuationColor{1.0};  // KHR_materials_volume (chapter 13): the colour white light
     double attenuationDistance = 0;    // keeps after this distance in the scene's units; 0: no absorption
+    double dispersion = 0;      // KHR_materials_dispersion (chapter 13): 20 / Abbe number, 0: none
     int baseColorTexture = -1;  // index into MeshFile::textures (times baseColor), -1: none
 };
 

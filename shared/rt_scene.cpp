@@ -66,6 +66,8 @@ float worldRadius(const Object& o) {
 }
 }  // namespace
 
+static_assert(uint32_t(Glass::Diamond) == GLASS_DIAMOND && uint32_t(Glass::BK7) == GLASS_BK7);
+
 gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std::vector<uint32_t>& firstTexel) {
     glm::uvec4 texture(0);
     if (m.texture >= 0) {  // chapter 12: where its texels are, its size, and how it wraps and filters
@@ -78,7 +80,7 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std:
     }
     return {v4(m.ka), v4(m.kd), v4(m.ks),
             glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission), float(m.ior)),
-            glm::vec4(float(m.f0), float(m.roughness), 0, 0), texture,
+            glm::vec4(float(m.f0), float(m.roughness), float(m.dispersion / 20), float(m.glass)), texture,
             glm::vec4(glm::vec3(m.absorption), float(m.priority))};
 }
 

@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include "files.h"
+#include "host_device.h"
 #include "mesh_file.h"
 #include "progress.h"
 #include "resources.h"
@@ -315,6 +316,7 @@ Material materialFromFile(const FileMaterial& f) {
     m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
     m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;  // rough reflection only for metal (ch 11)
     if (f.attenuationDistance > 0) m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);  // ch 13
+    m.dispersion = f.dispersion;  // ch 13
     return m;
 }
 // [end]
@@ -461,7 +463,7 @@ Scene loadScene(const std::string& path) {
         std::string key = "materials." + it.key();
         const json& m = it.value();
         r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness",
-                            "attenuation_color", "attenuation_distance", "priority"});
+                            "attenuation_color", "attenuation_distance", "priority", "dispersion"});
         Material mat;
         mat.name = it.key();
         if (m.contains("ka")) mat.ka = r.vec3(m["ka"], key + ".ka", 0, 1);
@@ -486,6 +488,23 @@ Scene loadScene(const std::string& path) {
         if (m.contains("priority")) {
             if (!m["priority"].is_number_integer()) r.fail(key + ".priority", "must be a whole number");
             mat.priority = int(r.number(m["priority"], key + ".priority", 0, 255));
+        }
+        // Chapter 13: a glass by name, its index from Sellmeier's equation; or
+        // glTF's KHR_materials_dispersion, 20 / Abbe number, about the ior.
+        if (m.contains("dispersion") && m["dispersion"].is_string()) {
+            static const std::map<std::string, Glass> glasses = {
+                {"bk7", Glass::BK7}, {"fused_silica", Glass::FusedSilica}, {"water", Glass::Water},
+                {"diamond", Glass::Diamond}};
+            auto glass = glasses.find(m["dispersion"].get<std::string>());
+            if (glass == glasses.end())
+                r.fail(key + ".dispersion", "no glass named \"" + m["dispersion"].get<std::string>() +
+                                                "\" (bk7, fused_silica, water, diamond, or 20 / Abbe number)");
+            if (m.contains("ior"))
+                r.fail(key + ".ior", "a named glass's dispersion sets the index; give one or the other");
+            mat.glass = glass->second;
+            mat.ior = glassIndex(mat.glass, 587.5618);  // the helium d line: n_d
+        } else if (m.contains("dispersion")) {
+            mat.dispersion = r.number(m["dispersion"], key + ".dispersion", 0, 20);
         }
         s.materials.push_back(mat);
     }
@@ -646,5 +665,33 @@ nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin) {
 glm::dvec3 absorptionOf(const glm::dvec3& color, double distance) {
     return -glm::log(color) / distance;  // exp(-sigma d) = color at d = distance
 }
+
+// [region sellmeier]
+namespace {
+double sellmeier(double nm, std::array<double, 8> c) {
+    double l2 = nm * nm * 1e-6, n2 = 1;  // in square micrometres
+    for (int i = 0; i < 4; ++i) n2 += c[i] * l2 / (l2 - c[4 + i]);
+    return std::sqrt(n2);
+}
+}  // namespace
+
+double glassIndex(Glass glass, double nm) {
+    switch (glass) {
+        case Glass::BK7: return sellmeier(nm, {SELLMEIER_BK7});
+        case Glass::FusedSilica: return sellmeier(nm, {SELLMEIER_FUSED_SILICA});
+        case Glass::Water: return sellmeier(nm, {SELLMEIER_WATER});
+        case Glass::Diamond: return sellmeier(nm, {SELLMEIER_DIAMOND});
+        case Glass::None: break;
+    }
+    return 1;
+}
+
+double indexAt(const Material& m, double nm) {
+    if (m.glass != Glass::None) return glassIndex(m.glass, nm);
+    if (m.dispersion <= 0) return m.ior;
+    double abbe = 20 / m.dispersion;
+    return std::max(m.ior + (m.ior - 1) / abbe * (523655 / (nm * nm) - 1.5168), 1.0);
+}
+// [end]
 
 }  // namespace rg

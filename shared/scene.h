@@ -31,6 +31,9 @@ struct PointLight {
     glm::dvec3 intensity{1, 1, 1};  // linear radiance scale I_i
 };
 
+// Chapter 13: the glasses with a measured dispersion (host_device.h's GLASS_*).
+enum class Glass { None, BK7, FusedSilica, Water, Diamond };
+
 // Every parameter of chapters 05-11; each chapter reads what it needs.
 struct Material {
     std::string name;
@@ -47,6 +50,9 @@ struct Material {
     // Chapter 13, for a material that transmits: the medium inside it.
     glm::dvec3 absorption{0};      // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
     int priority = 0;              // where media overlap, the one of highest priority fills the space
+    // Its dispersion: a named glass (Sellmeier), else glTF's 20 / Abbe number (0: none).
+    Glass glass = Glass::None;
+    double dispersion = 0;
 };
 
 enum class ShapeType { Sphere, Quad, Mesh };
@@ -93,6 +99,13 @@ double largestStretch(const glm::dmat4& transform);
 // Chapter 13: the Beer-Lambert coefficient of a medium in which white light
 // keeps `color` after `distance` (glTF's KHR_materials_volume): -ln(color) / distance.
 glm::dvec3 absorptionOf(const glm::dvec3& color, double distance);
+
+// Chapter 13: a material's index of refraction at a wavelength (nm): a
+// named glass's Sellmeier equation, or glTF's KHR_materials_dispersion line
+// n = max(n_d + (n_d - 1) / V (523655 / L^2 - 1.5168), 1) through its ior
+// at 587.6 nm; the ior itself without dispersion.
+double indexAt(const Material& m, double nm);
+double glassIndex(Glass glass, double nm);
 
 // Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
 // the file and the key for a missing file, bad JSON, an unknown key, a

@@ -217,7 +217,8 @@ TEST(Meshes, GltfMaterialRoundTrip) {
         {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}},
                         {"KHR_materials_ior", {{"ior", 1.33}}},
                         {"KHR_materials_volume",  // chapter 13's absorption
-                         {{"thicknessFactor", 0.1}, {"attenuationDistance", 0.5}, {"attenuationColor", {0.5, 0.25, 1}}}}}}};
+                         {{"thicknessFactor", 0.1}, {"attenuationDistance", 0.5}, {"attenuationColor", {0.5, 0.25, 1}}}},
+                        {"KHR_materials_dispersion", {{"dispersion", 0.3}}}}}};  // chapter 13: 20 / Abbe number
     fs::copy_file(meshDir() + "/wine_glass.bin", dir + "/wine_glass.bin", fs::copy_options::overwrite_existing);
     writeText(dir + "/tinted.gltf", j.dump());
     rg::MeshFile file = rg::loadMeshFile(dir + "/tinted.gltf");
@@ -231,6 +232,7 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_EQ(f.ior, 1.33);
     EXPECT_EQ(f.attenuationDistance, 0.5);
     EXPECT_EQ(f.attenuationColor, glm::dvec3(0.5, 0.25, 1));
+    EXPECT_EQ(f.dispersion, 0.3);
     ASSERT_EQ(file.parts.size(), 1u);
     EXPECT_EQ(file.parts[0].material, 0);
     // Its mapping onto RayGlass's material (docs/scene-format.md).
@@ -250,6 +252,9 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     // Beer-Lambert: after 0.5, white keeps the attenuation colour.
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(std::exp(-m.absorption[c] * 0.5), f.attenuationColor[c], 1e-12);
     EXPECT_EQ(m.absorption.b, 0.0);  // a channel of colour 1 is not absorbed
+    // Dispersion, KHR_materials_dispersion's line: n_F - n_C = (n_d - 1) / V, V = 20 / 0.3.
+    EXPECT_NEAR(rg::indexAt(m, 587.5618), 1.33, 1e-6);
+    EXPECT_NEAR(rg::indexAt(m, 486.1327) - rg::indexAt(m, 656.2725), 0.33 / (20 / 0.3), 1e-5);
 }
 
 // ---- Textures -------------------------------------------------------------------
