@@ -419,7 +419,11 @@ double mediumIor(const Scene& scene, int medium) { return medium < 0 ? 1.0 : sce
 glm::dvec3 mediumAbsorption(const Scene& scene, int medium) {
     return medium < 0 ? glm::dvec3(0) : scene.materials[medium].absorption;
 }
+bool disperses(const Scene& scene, int medium) {
+    return medium >= 0 && (scene.materials[medium].glass != Glass::None || scene.materials[medium].dispersion > 0);
+}
 constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
+constexpr double kMinNm = 380, kMaxNm = 780;
 constexpr int kMaxPasses = 256;    // as the GPU's MAX_PASSES
 
 // Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing
@@ -455,6 +459,46 @@ void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dv
     if (glm::dot(ns, direction) >= 0) ns = n;
 }
 }  // namespace
+
+// [region path_wavelength]
+double referencePathWavelength(uint32_t x, uint32_t y, uint32_t first, uint32_t k) {
+    auto hash = [](uint32_t v) {  // PCG (Jarzynski and Olano 2020), as sampling.glsl's pcgHash
+        uint32_t state = v * 747796405u + 2891336453u;
+        uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+        return (word >> 22u) ^ word;
+    };
+    uint32_t reversed = 0;  // k's bits mirrored: the radical inverse
+    for (int b = 0; b < 32; ++b) reversed |= ((k >> b) & 1u) << (31 - b);
+    uint32_t seed = hash(x + hash(y + hash(first)));
+    double u = double(reversed >> 8) / 16777216.0 + double(seed >> 8) / 16777216.0;
+    return kMinNm + (kMaxNm - kMinNm) * (u - std::floor(u));
+}
+// [end]
+
+// [region spectral_weight]
+glm::dvec3 referenceSpectralWeight(double nm) {
+    auto lobe = [](double x, double peak, double below, double above) {
+        double t = (x - peak) / (x < peak ? below : above);
+        return std::exp(-0.5 * t * t);
+    };
+    auto srgb = [&](double x) {  // CIE XYZ (Wyman, Sloan and Shirley 2013), then XYZ to linear sRGB
+        glm::dvec3 xyz(1.056 * lobe(x, 599.8, 37.9, 31.0) + 0.362 * lobe(x, 442.0, 16.0, 26.7) -
+                           0.065 * lobe(x, 501.1, 20.4, 26.2),
+                       0.821 * lobe(x, 568.8, 46.9, 40.5) + 0.286 * lobe(x, 530.9, 16.3, 31.1),
+                       1.217 * lobe(x, 437.0, 11.8, 36.0) + 0.681 * lobe(x, 459.0, 26.0, 13.8));
+        return glm::dvec3(3.2404542 * xyz.x - 1.5371385 * xyz.y - 0.4985314 * xyz.z,
+                          -0.9692660 * xyz.x + 1.8760108 * xyz.y + 0.0415560 * xyz.z,
+                          0.0556434 * xyz.x - 0.2040259 * xyz.y + 1.0572252 * xyz.z);
+    };
+    static const glm::dvec3 mean = [&] {  // over the range, by a fine midpoint rule
+        glm::dvec3 sum(0);
+        const int steps = 40000;
+        for (int k = 0; k < steps; ++k) sum += srgb(kMinNm + (kMaxNm - kMinNm) * (k + 0.5) / steps);
+        return sum / double(steps);
+    }();
+    return srgb(nm) / mean;
+}
+// [end]
 
 glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p,
                                            double error, const glm::dvec3& n, const glm::dvec3& ns,
@@ -522,9 +566,34 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
         }
         int to = mediumOf(scene_, beyond);
         n1 = mediumIor(scene_, from), n2 = mediumIor(scene_, to);
-        if (n1 == n2 && mediumAbsorption(scene_, from) == mediumAbsorption(scene_, to)) {  // no surface here
+        auto dispersionOf = [&](int k) {
+            return k < 0 ? std::pair(Glass::None, 0.0) : std::pair(scene_.materials[k].glass, scene_.materials[k].dispersion);
+        };
+        if (n1 == n2 && mediumAbsorption(scene_, from) == mediumAbsorption(scene_, to) &&
+            dispersionOf(from) == dispersionOf(to)) {  // no surface here
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction, depth, arriving, beyond, passes);
+        }
+        if (disperses(scene_, from) || disperses(scene_, to)) {
+            if (media.wavelength == 0) {
+                // The first dispersive surface of this path: from here on its light
+                // depends on the wavelength. The same ray again at each wavelength.
+                MediumStack at = media;
+                if (settings.wavelength >= kMinNm || !media.wavelengths) {
+                    at.wavelength = settings.wavelength >= kMinNm ? settings.wavelength : 587.5618;
+                    return radiance(settings, origin, direction, depth, throughput, at, passes);
+                }
+                glm::dvec3 sum(0);
+                for (double nm : *media.wavelengths) {
+                    at.wavelength = nm;
+                    glm::dvec3 w = referenceSpectralWeight(nm);
+                    int passesAt = passes;
+                    sum += w * radiance(settings, origin, direction, depth, throughput * w, at, passesAt);
+                }
+                return sum / double(media.wavelengths->size());
+            }
+            auto indexOf = [&](int k) { return k < 0 ? 1.0 : indexAt(scene_.materials[k], media.wavelength); };
+            n1 = indexOf(from), n2 = indexOf(to);
         }
     }
     Split split = splitAt(settings, m, n1, n2, glm::dot(ns, v));
@@ -561,6 +630,10 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     if (settings.stage == ReferenceStage::Media) {  // chapter 13: the eye may be inside a medium
         MediumStack eye;
         if (scene_.cameraMedium >= 0) eye.materials.push_back(uint32_t(scene_.cameraMedium));
+        std::vector<double> wavelengths;  // the GPU's, frame after frame
+        for (uint32_t k = 0; k < std::max(1u, settings.frames); ++k)
+            wavelengths.push_back(referencePathWavelength(x, y, settings.firstFrame, k));
+        eye.wavelengths = &wavelengths;
         int passes = 0;
         return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes);
     }

@@ -18,7 +18,22 @@ enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7,
 // (the GPU's media.glsl keeps four; so does this).
 struct MediumStack {
     std::vector<uint32_t> materials;
+    double wavelength = 0;  // nm: the path's, once it has met dispersion; 0 before
+    // The pixel's wavelengths, one per accumulated frame as the GPU draws
+    // them: where the path first meets dispersion, its light is their mean.
+    const std::vector<double>* wavelengths = nullptr;
 };
+
+// Chapter 13: the wavelength (nm) of pixel (x, y)'s paths in frame k of an
+// accumulation that began at frame `first`, drawn as the GPU's spectrum.glsl
+// does (the radical inverse of k, shifted by a hash of the pixel), so that
+// the reference integrates over the same wavelengths as the image it checks.
+double referencePathWavelength(uint32_t x, uint32_t y, uint32_t first, uint32_t k);
+
+// Chapter 13: what one wavelength (nm) is worth in each linear sRGB channel,
+// the CIE 1931 matching functions (Wyman, Sloan and Shirley's fit) to sRGB
+// over their mean across 380-780 nm, computed here in double.
+glm::dvec3 referenceSpectralWeight(double nm);
 
 struct ReferenceSettings {
     ReferenceStage stage = ReferenceStage::Normals;
@@ -26,6 +41,9 @@ struct ReferenceSettings {
     int fresnelMode = 0;
     int samples = 1024;  // chapter 11: stratified samples per rough hit (a square number)
     uint64_t seed = 0;   // chapter 11: another seed gives an independent estimate (to measure its error)
+    double wavelength = 0;  // chapter 13: >= 380, every path at this wavelength (nm); else:
+    uint32_t frames = 1;      // the frames accumulated, one wavelength per path in each,
+    uint32_t firstFrame = 0;  // from this frame on
 };
 
 struct ReferenceHit {

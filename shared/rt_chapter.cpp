@@ -76,6 +76,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                  : TwoLaunches{};
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         Viewer viewer(app, opts, scene, rt, target, loop, params);  // a window's camera, overlay and keys
+        gpu::RtPush last{};  // the last frame's: what the reference checks
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             uint32_t unchanged = viewer.update(cmd, frame);  // frames since the picture last changed
             gpu::RtPush push{
@@ -86,7 +87,9 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .fresnelMode = uint32_t(settings.fresnelMode),
                 .accumulated = settings.accumulate ? unchanged : 0,
                 .epsilon = settings.epsilon,
+                .wavelength = settings.wavelength,
             };
+            last = push;
             if (canTwo)
                 recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, rt.width, rt.height,
                                Launches(settings.launches), frame);
@@ -94,7 +97,9 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
         });
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
-                                    .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples};
+                                    .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples,
+                                    .wavelength = settings.wavelength, .frames = last.accumulated + 1,
+                                    .firstFrame = last.frame - last.accumulated};
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},  // the last frame's launches
                                 {"parameters", params.values()}};
         if (canTwo) extra["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},

@@ -4,6 +4,9 @@
 #include "params.h"
 #include "rt_chapter.h"
 
+#include <cstdlib>
+#include <string>
+
 namespace rg {
 
 // --depth: how many times a ray may bounce (reflect or refract), 0 to 8.
@@ -41,6 +44,19 @@ inline void addRoughOptions(Params& params, RtChapterSettings& s) {
     params.integer("--reference-samples", s.referenceSamples,
                    "Samples per rough hit in the CPU reference (a square number)", 4, 65536)
         .live = false;
+}
+
+// Chapter 13's dispersion: --wavelength (one wavelength for every path, to
+// see or measure it alone) and progressive accumulation, as chapter 11's.
+inline void addSpectralOptions(Params& params, RtChapterSettings& s) {
+    s.accumulate = true;
+    params.number("--wavelength", s.wavelength,
+                  "Trace every path at this wavelength in nm, 380-780 (0: all, one per path and frame)", 0, 780)
+        .check = [](const std::string& v) {
+            double nm = std::strtod(v.c_str(), nullptr);
+            return nm == 0 || (nm >= 380 && nm <= 780) ? std::string() : "must be 0 or 380-780 nm, not " + v;
+        };
+    params.toggle("--no-accumulate", s.accumulate, "Every frame on its own (for timing single frames)", true);
 }
 
 }  // namespace rg

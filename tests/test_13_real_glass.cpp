@@ -3,10 +3,15 @@
 // double): glass in the same glass is no surface; an air bubble in glass
 // reflects totally past the critical angle; a slab transmits Fresnel at
 // both faces times Beer-Lambert; with nothing nested chapter 13 is chapter
-// 10; and the scene keys of media are checked.
+// 10; and the scene keys of media are checked. Dispersion: a prism and a
+// lens measured at the Fraunhofer lines against SCHOTT's N-BK7 indices,
+// white light through a slab stays white, and the prism scene against its
+// reference after the same frames.
 #include "harness.h"
+#include "optics_image.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
 
@@ -34,8 +39,9 @@ std::string writeScene(const std::string& dir, const std::string& name, const nl
 rg::FloatImage render(const char* exe, const std::string& scene, const std::string& out, int width, int height,
                       std::vector<std::string> extra = {}) {
     std::vector<std::string> args = {"--headless", "--validation", "--scene", scene, "--width", std::to_string(width),
-                                     "--height", std::to_string(height), "--frames", "1", "--output", out};
+                                     "--height", std::to_string(height), "--output", out};
     args.insert(args.end(), extra.begin(), extra.end());
+    if (std::find(extra.begin(), extra.end(), "--frames") == extra.end()) args.insert(args.end(), {"--frames", "1"});
     rgtest::RunResult r = rgtest::run(exe, args);
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return rg::readPfm(out);
@@ -254,6 +260,134 @@ TEST(Media, BadMediumKeysAreOneClearLine) {
                                 {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "m"}}}}};
         rgtest::RunResult r = rgtest::run(RG_EXE_13, {"--headless", "--scene", writeScene(dir, "bad", scene), "--output",
                                                       dir + "/x.png"});
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_FALSE(std::ifstream(dir + "/x.png").good());
+    }
+}
+
+// ---- Dispersion -------------------------------------------------------------------
+
+std::string meshDir() { return (std::filesystem::path(RG_EXE_13).parent_path() / "assets" / "meshes").string(); }
+
+// N-BK7 at the Fraunhofer lines F, d and C, as SCHOTT's datasheet tabulates
+// them (measured indices, not the Sellmeier fit the renderer uses).
+struct Line { const char* name; double nm, n; };
+const Line kLines[3] = {{"F", 486.1327, 1.52238}, {"d", 587.5618, 1.51680}, {"C", 656.2725, 1.51432}};
+constexpr double kAbbe = (1.51680 - 1) / (1.52238 - 1.51432);  // 64.2
+
+double minimumDeviation(double n) { return (2 * std::asin(n * std::sin(kPi / 6)) - kPi / 3) * 180 / kPi; }
+
+// The 60-degree prism read off chapter 13's image at one wavelength at a
+// time (--wavelength), of N-BK7 by name (Sellmeier) and by its Abbe number
+// (glTF's KHR_materials_dispersion): each line deviates as its index says,
+// and F spreads from C by 0.709 degrees.
+TEST(Dispersion, APrismDeviatesEachLineAsItsIndexSays) {
+    nlohmann::json named = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"dispersion", "bk7"}};
+    nlohmann::json abbe = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5168},
+                           {"dispersion", 20 / kAbbe}};
+    for (const auto& [what, material] : {std::pair("named", named), std::pair("abbe", abbe)}) {
+        double deviation[3];
+        for (int i = 0; i < 3; ++i) {
+            SCOPED_TRACE(std::string(what) + " " + kLines[i].name);
+            std::string dir = rgtest::outputDir(std::string("13_prism_") + what + "_" + kLines[i].name);
+            deviation[i] = rgtest::optics::prismFromImage(RG_EXE_13, dir, meshDir(), material,
+                                                          {"--wavelength", std::to_string(kLines[i].nm)})
+                               .minimum;
+            std::printf("prism (%s) at %s, %.4f nm: minimum deviation %.4f deg (optics %.4f)\n", what, kLines[i].name,
+                        kLines[i].nm, deviation[i], minimumDeviation(kLines[i].n));
+            EXPECT_NEAR(deviation[i], minimumDeviation(kLines[i].n), 0.01);
+        }
+        double spread = deviation[0] - deviation[2], expected = minimumDeviation(1.52238) - minimumDeviation(1.51432);
+        std::printf("prism (%s): F - C spread %.4f deg (optics %.4f)\n", what, spread, expected);
+        EXPECT_NEAR(spread, expected, 0.005);
+    }
+}
+
+// Chapter 12's biconvex lens of N-BK7 (R = +-50 mm, 5 mm thick) at F and
+// C: blue comes to focus closer. Thick-lens optics: 1/f = (n - 1) (2/R -
+// (n - 1) t / (n R^2)), the back focal length f (1 - (n - 1) t / (n R)).
+TEST(Dispersion, ALensFocusesBlueCloserThanRedByTheLensmakersFormula) {
+    nlohmann::json named = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"dispersion", "bk7"}};
+    auto backFocus = [](double n) {
+        const double R = 50, t = 5;
+        double f = 1 / ((n - 1) * (2 / R - (n - 1) * t / (n * R * R)));
+        return f * (1 - (n - 1) * t / (n * R));
+    };
+    double bfl[2];
+    for (int i : {0, 2}) {
+        SCOPED_TRACE(kLines[i].name);
+        rgtest::optics::LensReading lens = rgtest::optics::lensFromImage(
+            RG_EXE_13, rgtest::outputDir(std::string("13_lens_") + kLines[i].name), meshDir(), named,
+            {"--wavelength", std::to_string(kLines[i].nm)});
+        bfl[i / 2] = lens.bfl;
+        std::printf("lens at %s: back focal length %.4f mm (optics %.4f)\n", kLines[i].name, lens.bfl,
+                    backFocus(kLines[i].n));
+    }
+    double shift = bfl[1] - bfl[0], expected = backFocus(1.51432) - backFocus(1.52238);
+    std::printf("lens: red focuses %.4f mm beyond blue (optics %.4f)\n", shift, expected);
+    EXPECT_NEAR(shift, expected, 0.02 * expected);
+}
+
+// White light through a flat slab of dispersive glass stays white. Under
+// a white sky all round, whatever a clear slab does not transmit it
+// reflects (R + T = 1 at every face), so each wavelength's paths bring 1,
+// whatever its index; at depth 8 what is cut off is below 1e-6. Then each
+// pixel is the mean of the wavelengths' weights, which must be 1 in every
+// channel: a wrong scale for a channel, or wavelengths drawn unevenly over
+// the range, tints it. 1024 frames; within 0.05 %.
+TEST(Dispersion, WhiteLightThroughASlabStaysWhite) {
+    std::string dir = rgtest::outputDir("13_white_slab");
+    const glm::dvec3 eye(0, 0, 3), lookAt(0, 0, 0), normal = glm::normalize(glm::dvec3(0.6, 0, 0.8));
+    std::ofstream(dir + "/slab.obj") << slabObj(lookAt, normal, 1.5, 0.3);
+    nlohmann::json scene = {
+        {"camera", {{"position", {eye.x, eye.y, eye.z}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 5}}},
+        {"sky", {{"top", 1}, {"horizon", 1}, {"bottom", 1}}},
+        {"ambient", 0},
+        {"materials", {{"bk7", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"dispersion", "bk7"}}}}},
+        {"objects", {{{"type", "mesh"}, {"file", "slab.obj"}, {"material", "bk7"}}}}};
+    const int size = 8;
+    rg::FloatImage image = render(RG_EXE_13, writeScene(dir, "slab", scene), dir + "/slab.pfm", size, size,
+                                  {"--depth", "8", "--frames", "1024"});
+    ASSERT_EQ(image.rgba.size(), size_t(size) * size * 4);
+    std::printf("white slab: pixel 0 %.6f %.6f %.6f\n", image.rgba[0], image.rgba[1], image.rgba[2]);
+    for (int i = 0; i < size * size; ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.rgba[4 * i + c], 1.0, 5e-4) << "pixel " << i << " channel " << c;
+}
+
+// The prism scene against its CPU reference, which integrates over the
+// very wavelengths the frames drew.
+TEST(Dispersion, ThePrismSceneMatchesItsReference) {
+    std::string dir = rgtest::outputDir("13_prism_reference");
+    rgtest::RunResult r = rgtest::run(RG_EXE_13, {"--headless", "--validation", "--reference", "--scene",
+                                                  RG_SOURCE_DIR "/assets/scenes/prism.json", "--width", "160",
+                                                  "--height", "90", "--frames", "16", "--output", dir + "/p.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/p.json");
+    rgtest::expectCleanReport(report, "13_real_glass", 160, 90);
+    EXPECT_LE(report["error"].value("frac_over_1_255", 1.0), 0.001);
+    EXPECT_LE(report["error"].value("rmse", 1.0), 1e-4);
+}
+
+// Bad dispersion: one line naming the key (or the option), exit 2, no output.
+TEST(Dispersion, BadDispersionIsOneClearLine) {
+    std::string dir = rgtest::outputDir("13_bad_dispersion");
+    struct Case { nlohmann::json material; std::vector<std::string> args; std::string says; };
+    nlohmann::json plain = glass(1.5);
+    nlohmann::json flint = {{"transmission", 1}, {"dispersion", "flint"}};
+    nlohmann::json both = {{"transmission", 1}, {"dispersion", "bk7"}, {"ior", 1.6}};
+    nlohmann::json negative = glass(1.5, {{"dispersion", -1}});
+    for (const Case& c : {Case{flint, {}, "materials.m.dispersion: no glass named \"flint\""},
+                          Case{both, {}, "materials.m.ior: a named glass's dispersion sets the index"},
+                          Case{negative, {}, "materials.m.dispersion"},
+                          Case{plain, {"--wavelength", "200"}, "--wavelength: must be 0 or 380-780 nm"}}) {
+        nlohmann::json scene = {{"camera", {{"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}}},
+                                {"materials", {{"m", c.material}}},
+                                {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "m"}}}}};
+        std::vector<std::string> args = {"--headless", "--scene", writeScene(dir, "bad", scene), "--output", dir + "/x.png"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        rgtest::RunResult r = rgtest::run(RG_EXE_13, args);
         EXPECT_EQ(r.exitCode, 2) << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
         EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;

@@ -8,6 +8,7 @@
 // by the two media that really meet there.
 #ifndef MEDIA_GLSL
 #define MEDIA_GLSL
+#include "spectrum.glsl"
 
 #define MEDIA_DEPTH 4u  // media a ray can be inside at once; entering a fifth forgets the first
 
@@ -45,6 +46,8 @@ uint leaveMedium(uint media, uint material) {
 
 float mediumIor(uint id) { return id == 0u ? 1.0 : materials[id - 1u].params.w; }
 vec3 mediumAbsorption(uint id) { return id == 0u ? vec3(0.0) : materials[id - 1u].medium.rgb; }
+vec2 mediumDispersion(uint id) { return id == 0u ? vec2(0.0) : materials[id - 1u].extra.zw; }
+float mediumIorAt(uint id, float nm) { return id == 0u ? 1.0 : indexAt(materials[id - 1u], nm); }
 
 // [region boundary]
 // What a ray inside `media` meets where it enters or leaves `material`: the
@@ -53,19 +56,21 @@ vec3 mediumAbsorption(uint id) { return id == 0u ? vec3(0.0) : materials[id - 1u
 // inside the same glass) there is no surface there at all: real = false.
 struct Boundary {
     bool real;
-    float n1, n2;
-    uint beyond;  // the media of a ray that crosses
+    uint from, to;  // the two media (material index + 1, 0: air)
+    float n1, n2;   // their indices (at 587.6 nm where they disperse)
+    uint beyond;    // the media of a ray that crosses
 };
 
 Boundary boundaryAt(uint media, uint material, bool entering) {
-    uint from = currentMedium(media);
     Boundary b;
+    b.from = currentMedium(media);
     b.beyond = entering ? enterMedium(media, material) : leaveMedium(media, material);
-    uint to = currentMedium(b.beyond);
-    if (!entering && b.beyond == media) from = material + 1u;  // leaving what it never entered: chapter 10's view
-    b.n1 = mediumIor(from);
-    b.n2 = mediumIor(to);
-    b.real = b.n1 != b.n2 || mediumAbsorption(from) != mediumAbsorption(to);
+    b.to = currentMedium(b.beyond);
+    if (!entering && b.beyond == media) b.from = material + 1u;  // leaving what it never entered: chapter 10's view
+    b.n1 = mediumIor(b.from);
+    b.n2 = mediumIor(b.to);
+    b.real = b.n1 != b.n2 || mediumAbsorption(b.from) != mediumAbsorption(b.to)
+          || mediumDispersion(b.from) != mediumDispersion(b.to);
     return b;
 }
 // [end]

@@ -85,6 +85,7 @@ struct Tree {
     vec3 radiance;
     uint rays;
     uint passes;  // chapter 13: surfaces crossed without a change of medium (MAX_PASSES)
+    float wavelength;  // chapter 13: the one wavelength (nm) of the branches that met dispersion
 };
 Tree tree;
 
@@ -100,6 +101,8 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
 // pushes its own reflected and refracted branches.
 void growBranch() {
     Branch b = tree.stack[--tree.top];
+    uint spectral = b.depth & BRANCH_SPECTRAL;  // chapter 13: its light is one wavelength's
+    b.depth &= ~BRANCH_SPECTRAL;
     traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);  // depth 0: a camera ray
     ++tree.rays;
     vec3 throughput = b.throughput;
@@ -127,10 +130,23 @@ void growBranch() {
             vec3 o = secondaryOrigin(p, e, -n);
             float tMax = entering ? insideReach(o, p, radius) : kInfinity;
             if (tree.passes++ < MAX_PASSES)
-                tree.stack[tree.top++] = Branch(o, b.depth, b.direction, tMax, throughput, boundary.beyond);
+                tree.stack[tree.top++] =
+                    Branch(o, b.depth | spectral, b.direction, tMax, throughput, boundary.beyond);
             return;
         }
         n1 = boundary.n1, n2 = boundary.n2, beyond = boundary.beyond;
+        // [region dispersion]
+        if (mediumDispersion(boundary.from) != vec2(0.0) || mediumDispersion(boundary.to) != vec2(0.0)) {
+            // The indices at the path's wavelength. The first time, the branch's
+            // light becomes that wavelength's (spectrum.glsl), unless every path
+            // has the one wavelength of --wavelength.
+            n1 = mediumIorAt(boundary.from, tree.wavelength);
+            n2 = mediumIorAt(boundary.to, tree.wavelength);
+            bool oneWavelength = push.wavelength >= SPECTRUM_MIN_NM;
+            if (spectral == 0u && !oneWavelength) throughput *= spectralWeight(tree.wavelength);
+            spectral = BRANCH_SPECTRAL;
+        }
+        // [end]
     }
 #endif
     // [end]
@@ -144,14 +160,16 @@ void growBranch() {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
         vec3 t = refractedDirection(b.direction, n, ns, s.eta), o = secondaryOrigin(p, e, -n);
         float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
-        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, b.depth + 1u, t, tMax, tr, beyond);
+        uint depth = (b.depth + 1u) | spectral;
+        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, depth, t, tMax, tr, beyond);
         else rf += tr;  // only a mesh's flat triangle can reflect it all (sides above)
     }
     // [end]
     if (maxComponent(rf) >= MIN_THROUGHPUT) {
         vec3 o = secondaryOrigin(p, e, n);
         float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
-        tree.stack[tree.top++] = Branch(o, b.depth + 1u, reflectedDirection(b.direction, n, ns), tMax, rf, b.media);
+        vec3 r = reflectedDirection(b.direction, n, ns);
+        tree.stack[tree.top++] = Branch(o, (b.depth + 1u) | spectral, r, tMax, rf, b.media);
     }
 }
 
