@@ -6,7 +6,8 @@
 #   tools/perf-report.sh --assemble-only      (plots and page from existing data)
 # The scaling study is tools/scaling.py (--out docs/perf/<device>), run apart:
 # it takes minutes on lavapipe; this script plots and includes its results.
-# So is chapter 12's, tools/meshes_study.py (the same --out).
+# So are chapter 12's, tools/meshes_study.py, and chapter 13's,
+# tools/real_glass_study.py (the same --out).
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -58,16 +59,19 @@ section() {
       if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
         section "$dir" "$slug" scaling scaling "GPU ms per frame and structure memory against the number of spheres"
       fi
-    elif [ -f "$dir/meshes.json" ]; then  # a device measured for chapter 12 only
+    elif [ -f "$dir/meshes.json" ]; then  # a device measured for chapters 12-13 only
       echo "### $(jq -r '.device' "$dir/meshes.json")"
       echo
-      echo "Driver: $(jq -r '.driver' "$dir/meshes.json"). Chapter 12's study only (\`tools/meshes_study.py\`)."
+      echo "Driver: $(jq -r '.driver' "$dir/meshes.json"). Only the chapter studies below" \
+           "(\`tools/meshes_study.py\` for 12, \`tools/real_glass_study.py\` for 13)."
       echo
     fi
-    if [ -f "$dir/meshes.md" ]; then  # tools/meshes_study.py
-      cat "$dir/meshes.md"
-      echo
-    fi
+    for study in meshes real_glass; do  # tools/meshes_study.py, tools/real_glass_study.py
+      if [ -f "$dir/$study.md" ]; then
+        cat "$dir/$study.md"
+        echo
+      fi
+    done
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in
 } > "$page"
