@@ -155,6 +155,88 @@ TEST(Media, ABubbleInGlassReflectsTotallyPastTheCriticalAngle) {
     EXPECT_GT(above, 20);
 }
 
+// The nearer root t > 1e-9 of |o + t d - c| = r, or -1.
+double hitSphere(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& c, double r) {
+    glm::dvec3 f = o - c;
+    double b = glm::dot(f, d), q = glm::dot(f, f) - r * r, disc = b * b - q;
+    if (disc < 0) return -1;
+    double s = std::sqrt(disc), t0 = -b - s, t1 = -b + s;
+    return t0 > 1e-9 ? t0 : t1 > 1e-9 ? t1 : -1;
+}
+
+// Snell's law for unit d and a unit normal n facing it, from n1 into n2;
+// false under total internal reflection.
+bool refracted(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2, glm::dvec3& t) {
+    double eta = n1 / n2, c = -glm::dot(n, d), k = 1 - eta * eta * (1 - c * c);
+    if (k < 0) return false;
+    t = eta * d + (eta * c - std::sqrt(k)) * n;
+    return true;
+}
+
+// A glass ball with an air bubble, seen from outside: its ring. Rays that
+// refract into the ball and meet the bubble past the critical angle are
+// reflected whole, so the bubble shows a bright ring round a darker disc
+// where most light enters the air. The sky is white, the material has no
+// ambient, diffuse or highlight, and the depth limit is 3, so a pixel that
+// sees the bubble holds exactly F0 + (1 - F0) Rb (1 - F2): the ball's
+// reflection of the sky, plus the light the bubble reflects (Rb) that then
+// leaves the ball (1 - F2); the light that enters the bubble needs a fourth
+// surface to get out. The test traces each pixel's ray itself, in double,
+// with the bubble off the ball's centre, and must find the ring where its
+// own trace puts it.
+TEST(Media, ABubbleShowsItsRingWhereAnIndependentTracePutsIt) {
+    std::string dir = rgtest::outputDir("13_bubble_ring");
+    const double n = 1.5168, R = 1, r = 0.45;
+    const glm::dvec3 eye(0.3, 0.2, 4), ball(0, 0, 0), bubble(0.15, -0.1, 0.1);
+    const int size = 160;
+    const double fov = 32;
+    nlohmann::json scene = {
+        {"camera", {{"position", {eye.x, eye.y, eye.z}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", fov}}},
+        {"sky", {{"top", 1}, {"horizon", 1}, {"bottom", 1}}},
+        {"ambient", 0},
+        {"materials", {{"bk7", glass(n, {{"ks", 0}})}, {"air", glass(1.0, {{"ks", 0}, {"priority", 1}})}}},
+        {"objects", {{{"type", "sphere"}, {"center", {ball.x, ball.y, ball.z}}, {"radius", R}, {"material", "bk7"}},
+                     {{"type", "sphere"}, {"center", {bubble.x, bubble.y, bubble.z}}, {"radius", r}, {"material", "air"}}}}};
+    rg::FloatImage image = render(RG_EXE_13, writeScene(dir, "ring", scene), dir + "/ring.pfm", size, size,
+                                  {"--depth", "3"});
+    ASSERT_EQ(image.rgba.size(), size_t(size) * size * 4);
+    const double critical = std::asin(1 / n);
+    int ring = 0, disc = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            glm::dvec3 d = cameraDirection(eye, {0, 0, 0}, fov, x, y, size, size);
+            double t0 = hitSphere(eye, d, ball, R);
+            if (t0 < 0) continue;
+            glm::dvec3 p0 = eye + t0 * d, n0 = glm::normalize(p0 - ball), d1;
+            if (!refracted(d, n0, 1, n, d1)) continue;
+            d1 = glm::normalize(d1);
+            double t1 = hitSphere(p0, d1, bubble, r);
+            if (t1 < 0) continue;  // misses the bubble
+            glm::dvec3 p1 = p0 + t1 * d1, n1 = glm::normalize(p1 - bubble);
+            double cos1 = -glm::dot(n1, d1), incidence = std::acos(cos1);
+            if (std::abs(incidence - critical) < 0.004 || cos1 < 0.05) continue;  // too steep to compare
+            glm::dvec3 d2 = d1 + 2 * cos1 * n1;  // reflected, on into the glass
+            double t2 = hitSphere(p1, d2, ball, R);
+            if (t2 < 0) continue;
+            glm::dvec3 n2 = glm::normalize(p1 + t2 * d2 - ball);
+            double F0 = fresnelEquations(-glm::dot(n0, d), 1, n), Rb = fresnelEquations(cos1, n, 1);
+            double F2 = fresnelEquations(glm::dot(n2, d2), n, 1);
+            double expected = F0 + (1 - F0) * Rb * (1 - F2);
+            float value = image.rgba[4 * (size_t(y) * size + x)];
+            EXPECT_NEAR(value, expected, 0.005 * expected + 1e-4) << "pixel " << x << "," << y;
+            if (incidence > critical) {
+                ++ring;
+                EXPECT_GT(value, 0.5) << "the ring at pixel " << x << "," << y;
+            } else if (incidence < critical - 0.05) {  // Fresnel climbs steeply in the last 3 degrees
+                ++disc;
+                EXPECT_LT(value, 0.5) << "inside the ring at pixel " << x << "," << y;
+            }
+        }
+    std::printf("bubble: %d pixels of the ring, %d inside it\n", ring, disc);
+    EXPECT_GT(ring, 300);
+    EXPECT_GT(disc, 300);
+}
+
 // A flat box of vertices in world space, wound counter-clockwise from outside.
 std::string slabObj(const glm::dvec3& centre, const glm::dvec3& normal, double halfWidth, double thickness) {
     glm::dvec3 t1 = glm::normalize(glm::cross(normal, {1, 0, 0})), t2 = glm::cross(normal, t1);
