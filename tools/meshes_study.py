@@ -14,12 +14,13 @@ error is the tessellation's. GPU times are the median over frames, the
 fastest of --repeat runs. Standard library only, so it runs on the GPU
 machine too.
 """
-import argparse
 import json
 import os
 import subprocess
 import sys
 import tempfile
+
+from study import run_study
 
 
 def run(exe, scene, args, extra, reference=False):
@@ -112,31 +113,7 @@ def tables(data):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--bin")
-    p.add_argument("--out", required=True)
-    p.add_argument("--tables-only", action="store_true")
-    p.add_argument("--width", type=int, default=640)
-    p.add_argument("--height", type=int, default=360)
-    p.add_argument("--frames", type=int, default=10)
-    p.add_argument("--repeat", type=int, default=3)
-    args = p.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "meshes.json")
-    if args.tables_only:
-        data = json.load(open(path))
-    else:
-        if not args.bin:
-            sys.exit("meshes_study.py: --bin is needed to measure (or --tables-only)")
-        if args.width < 1 or args.height < 1 or args.frames < 1 or args.repeat < 1:
-            sys.exit("meshes_study.py: --width, --height, --frames and --repeat must be at least 1")
-        data = measure(args)
-        with open(path, "w") as f:
-            json.dump(data, f, indent=2)
-            f.write("\n")
-    with open(os.path.join(args.out, "meshes.md"), "w") as f:
-        f.write(tables(data))
-    print(f"wrote {os.path.join(args.out, 'meshes.md')}")
+    run_study("meshes", __doc__, measure, tables)
 
 
 if __name__ == "__main__":

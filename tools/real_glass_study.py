@@ -18,7 +18,6 @@ frames' wavelengths are a part of its, and the error it shows is the
 error of stopping early. Standard library only, so it runs on the GPU
 machine too.
 """
-import argparse
 import json
 import math
 import os
@@ -26,6 +25,8 @@ import struct
 import subprocess
 import sys
 import tempfile
+
+from study import run_study
 
 
 def run(exe, scene, size, frames, extra, out=None, reference=False):
@@ -171,37 +172,21 @@ def tables(data):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--bin")
-    p.add_argument("--out", required=True)
-    p.add_argument("--tables-only", action="store_true")
-    p.add_argument("--width", type=int, default=640)
-    p.add_argument("--height", type=int, default=360)
-    p.add_argument("--frames", type=int, default=10)
-    p.add_argument("--repeat", type=int, default=3)
-    p.add_argument("--study-width", type=int, default=160)
-    p.add_argument("--study-height", type=int, default=90)
-    p.add_argument("--reference-frames", type=int, default=4096)
-    args = p.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "real_glass.json")
-    if args.tables_only:
-        with open(path) as f:
-            data = json.load(f)
-    else:
-        if not args.bin:
-            sys.exit("real_glass_study.py: --bin is needed to measure (or --tables-only)")
-        if min(args.width, args.height, args.frames, args.repeat, args.study_width, args.study_height) < 1 \
-                or args.reference_frames < 16:
-            sys.exit("real_glass_study.py: sizes, --frames and --repeat must be at least 1, --reference-frames 16")
+    def options(p):
+        p.add_argument("--study-width", type=int, default=160)
+        p.add_argument("--study-height", type=int, default=90)
+        p.add_argument("--reference-frames", type=int, default=4096)
+
+    def check(args):
+        if min(args.study_width, args.study_height) < 1 or args.reference_frames < 16:
+            return "--study-width and --study-height must be at least 1, --reference-frames 16"
+        return ""
+
+    def measured(args):
         with tempfile.TemporaryDirectory() as tmp:
-            data = measure(args, tmp)
-        with open(path, "w") as f:
-            json.dump(data, f, indent=2)
-            f.write("\n")
-    with open(os.path.join(args.out, "real_glass.md"), "w") as f:
-        f.write(tables(data))
-    print(f"wrote {os.path.join(args.out, 'real_glass.md')}")
+            return measure(args, tmp)
+
+    run_study("real_glass", __doc__, measured, tables, options, check)
 
 
 if __name__ == "__main__":

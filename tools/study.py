@@ -1,0 +1,47 @@
+"""What chapter studies share (tools/meshes_study.py, tools/real_glass_study.py):
+their command line and their files. A study measures into OUT/NAME.json and
+writes its tables to OUT/NAME.md; --tables-only rewrites the tables from
+the JSON. Standard library only, so the studies run on the GPU machine too.
+"""
+import argparse
+import json
+import os
+import sys
+
+
+def run_study(name, doc, measure, tables, add_options=None, check=None):
+    """measure(args) -> data; tables(data) -> markdown. add_options(parser)
+    declares the study's own options; check(args) returns "" or what is wrong."""
+    p = argparse.ArgumentParser(description=doc.splitlines()[0])
+    p.add_argument("--bin")
+    p.add_argument("--out", required=True)
+    p.add_argument("--tables-only", action="store_true")
+    p.add_argument("--width", type=int, default=640)
+    p.add_argument("--height", type=int, default=360)
+    p.add_argument("--frames", type=int, default=10)
+    p.add_argument("--repeat", type=int, default=3)
+    if add_options:
+        add_options(p)
+    args = p.parse_args()
+    tool = f"{name}_study.py"
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, f"{name}.json")
+    if args.tables_only:
+        with open(path) as f:
+            data = json.load(f)
+    else:
+        if not args.bin:
+            sys.exit(f"{tool}: --bin is needed to measure (or --tables-only)")
+        if min(args.width, args.height, args.frames, args.repeat) < 1:
+            sys.exit(f"{tool}: --width, --height, --frames and --repeat must be at least 1")
+        problem = check(args) if check else ""
+        if problem:
+            sys.exit(f"{tool}: {problem}")
+        data = measure(args)
+        with open(path, "w") as f:
+            json.dump(data, f, indent=2)
+            f.write("\n")
+    out = os.path.join(args.out, f"{name}.md")
+    with open(out, "w") as f:
+        f.write(tables(data))
+    print(f"wrote {out}")
