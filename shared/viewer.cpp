@@ -222,10 +222,12 @@ void Viewer::parameterControls() {
                                           (p.max - p.min > 64 ? ImGuiSliderFlags_Logarithmic : 0));
             break;
         case Param::Kind::Number:
-            // A log slider from 0 reaches down to 10^-(digits after the point):
-            // chapter 06's epsilon needs 1e-9 and below.
-            edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), p.min == 0 ? "%.10f" : "%.3g",
-                                        ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+            if (p.logarithmic)  // from 0 it reaches down to 10^-(digits after the point): 06's epsilon, 1e-9
+                edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), p.min == 0 ? "%.10f" : "%.3g",
+                                            ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+            else
+                edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), "%.1f",
+                                            ImGuiSliderFlags_AlwaysClamp);
             break;
         case Param::Kind::Choice: {
             std::vector<const char*> names;
