@@ -136,8 +136,14 @@ void Viewer::handleMouse() {
     }
     // Presses and releases as events: a quick click can begin and end
     // between two frames. A press on the overlay is the overlay's.
+    // ImGui's own answer is the last frame's: a pointer that has just come
+    // onto the overlay and clicked is not yet its. So the overlay's box too.
+    auto onOverlay = [&](double x, double y) {
+        const double* b = overlayBox_;
+        return overlayHasMouse || (overlayVisible_ && x >= b[0] && y >= b[1] && x < b[0] + b[2] && y < b[1] + b[3]);
+    };
     for (const Window::ButtonEvent& e : app_.window->takeButtons()) {
-        if (e.pressed && dragButton_ < 0 && !overlayHasMouse) {
+        if (e.pressed && dragButton_ < 0 && !onOverlay(e.x, e.y)) {
             dragButton_ = e.button;
             pressX_ = lastX_ = e.x;
             pressY_ = lastY_ = e.y;
@@ -205,6 +211,8 @@ void Viewer::drawOverlay(uint32_t frame) {
     if (ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) materialControls();
     ImGui::PopItemWidth();
     ImGui::TextDisabled("H hides this, F2 saves, Esc quits");
+    ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    overlayBox_[0] = at.x, overlayBox_[1] = at.y, overlayBox_[2] = size.x, overlayBox_[3] = size.y;
     ImGui::End();
 }
 

@@ -57,6 +57,7 @@ private:
     CameraControl camera_;
     std::unique_ptr<Overlay> overlay_;
     bool overlayVisible_ = true;
+    double overlayBox_[4] = {0, 0, 0, 0};  // the overlay's window as last drawn: x, y, width, height
     DeletionQueue resizedTarget_;  // the target and ray counts of the last resize
     std::optional<ReferenceRenderer> picker_;  // one CPU ray per click, built at the first click
 

@@ -300,14 +300,22 @@ try:
 
         # The overlay's "depth" slider (ImGui's fixed layout: its row 141 px
         # down, the slider from x = 16): a click at its left end sets 0.
-        xdotool("mousemove", box[0] + 18, box[1] + 141)
-        xdotool("click", 1)
+        # From outside the window, moved there and clicked in one go, as a
+        # quick hand does: the click comes before a frame has seen the
+        # pointer over the overlay.
+        xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)
+        time.sleep(0.5)
+        xdotool("mousemove", box[0] + 18, box[1] + 141, "click", 1)
         depth0 = shot_when(lambda s: diff(shown, s, right) > 2, "depth 0 changes the picture live")
         write_png(os.path.join(OUT, "window_depth0.png"), depth0)
         key(box, "F2")
         check(wait_for(f"{NAME}_shot3.png", log), "F2 after changing a parameter in the overlay")
         changed3 = json.load(open(os.path.join(OUT, f"{NAME}_shot3.json")))
         check(changed3["parameters"]["depth"] == 0, f"the overlay's depth slider set depth {changed3['parameters']['depth']}")
+        # That click came with the pointer's move onto the overlay: it is the
+        # overlay's, and must not reach the scene's picker behind it.
+        check(changed3.get("selected_material") == "blue",
+              f"a click on the overlay picks nothing in the scene ({changed3.get('selected_material')})")
         f3 = read_png_rgb(os.path.join(OUT, f"{NAME}_shot3.png"))
         check(diff(f2, f3, right) > 2, f"depth 0 changes the picture live ({diff(f2, f3, right):.1f})")
 
