@@ -21,10 +21,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     Options opts;
     RtChapterSettings settings;
     Params params;
+    if (chapter.options) chapter.options(params, settings);  // the chapter's own first
     params.integer("--sphere-mesh", settings.sphereMesh,
                    "Spheres as icospheres subdivided this often (0: analytic spheres)", 0, 7)
         .live = false;  // the acceleration structures are built once
-    if (chapter.options) chapter.options(params, settings);
     auto extra = [&](CLI::App& app, Options& o) {
         addSceneOptions(app, o, true);
         params.addTo(app);

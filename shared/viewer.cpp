@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 namespace rg {
 
@@ -190,6 +191,7 @@ void Viewer::pick(double x, double y) {
     glm::dvec3 direction = camera_.rayDirection(px, py, rt_.width, rt_.height);
     ReferenceHit hit = picker_->trace(camera_.camera().position, direction, picker_->eyeTmin(), 1e30);
     selectedMaterial_ = hit.t < 0 ? -1 : int(scene_.objects[hit.object].material);
+    openMaterial_ = selectedMaterial_ >= 0;
 }
 
 void Viewer::drawOverlay(uint32_t frame) {
@@ -197,20 +199,23 @@ void Viewer::drawOverlay(uint32_t frame) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.8f);
     ImGui::Begin(app_.window->initialTitle().c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    // Compact, so that the picture stays in view: two lines of numbers, the
+    // chapter's parameters, the material only once one is picked.
     const FrameTimes& times = loop_.times();
-    if (!times.gpuMs.empty()) {
-        double frameMs = recent(times.cpuMs);
-        ImGui::Text("GPU %.2f ms   frame (CPU) %.2f ms   %.1f fps", recent(times.gpuMs), frameMs,
-                    frameMs > 0 ? 1000 / frameMs : 0.0);
-    }
-    ImGui::Text("%.1f Mrays/s (%llu rays a frame)", mraysPerS_, (unsigned long long)raysPerFrame_);
-    ImGui::Text("%u x %u, %u frames of this picture", rt_.width, rt_.height, frame - firstFrame_ + 1);
+    double frameMs = times.cpuMs.empty() ? 0.0 : recent(times.cpuMs);
+    ImGui::Text("GPU %.2f ms  %.1f fps  %.1f Mrays/s", times.gpuMs.empty() ? 0.0 : recent(times.gpuMs),
+                frameMs > 0 ? 1000 / frameMs : 0.0, mraysPerS_);
+    ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height, (unsigned long long)raysPerFrame_,
+                frame - firstFrame_ + 1);
     ImGui::PushItemWidth(140);
     if (!params_.all().empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
         parameterControls();
-    if (ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) materialControls();
+    if (std::exchange(openMaterial_, false)) ImGui::SetNextItemOpen(true);  // a click just picked one
+    if (ImGui::CollapsingHeader("Material")) materialControls();
     ImGui::PopItemWidth();
-    ImGui::TextDisabled("H hides this, F2 saves, Esc quits");
+    ImGui::TextDisabled("drag orbit, right drag pan, wheel zoom");
+    ImGui::TextDisabled("click pick, WASDQE fly, R reset");
+    ImGui::TextDisabled("C camera, H hide, F2 save, Esc quit");
     ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     overlayBox_[0] = at.x, overlayBox_[1] = at.y, overlayBox_[2] = size.x, overlayBox_[3] = size.y;
     ImGui::End();

@@ -65,6 +65,7 @@ private:
     bool changed_ = false;     // view or parameter changed: restart the average
     bool cameraDirty_ = true;  // upload the camera's matrices
     int selectedMaterial_ = -1;
+    bool openMaterial_ = false;  // a pick opens the overlay's material section
     bool materialDirty_ = false;
     // Mouse drags: where the button went down, whether ImGui had the mouse then.
     int dragButton_ = -1;

@@ -298,14 +298,14 @@ try:
         check(diff(f2, png) < 0.01, f"F2's PNG has no overlay: it equals the headless PNG ({diff(f2, png):.3f})")
         check(diff(png, shown, corner) > 5, "the headless PNG differs from the window where the overlay is")
 
-        # The overlay's "depth" slider (ImGui's fixed layout: its row 141 px
+        # The overlay's "depth" slider (ImGui's fixed layout: its row 101 px
         # down, the slider from x = 16): a click at its left end sets 0.
         # From outside the window, moved there and clicked in one go, as a
         # quick hand does: the click comes before a frame has seen the
         # pointer over the overlay.
         xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)
         time.sleep(0.5)
-        xdotool("mousemove", box[0] + 18, box[1] + 141, "click", 1)
+        xdotool("mousemove", box[0] + 18, box[1] + 101, "click", 1)
         depth0 = shot_when(lambda s: diff(shown, s, right) > 2, "depth 0 changes the picture live")
         write_png(os.path.join(OUT, "window_depth0.png"), depth0)
         key(box, "F2")
