@@ -419,9 +419,6 @@ double mediumIor(const Scene& scene, int medium) { return medium < 0 ? 1.0 : sce
 glm::dvec3 mediumAbsorption(const Scene& scene, int medium) {
     return medium < 0 ? glm::dvec3(0) : scene.materials[medium].absorption;
 }
-bool disperses(const Scene& scene, int medium) {
-    return medium >= 0 && (scene.materials[medium].glass != Glass::None || scene.materials[medium].dispersion > 0);
-}
 constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
 constexpr double kMinNm = 380, kMaxNm = 780;
 constexpr int kMaxPasses = 256;    // as the GPU's MAX_PASSES
@@ -574,7 +571,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction, depth, arriving, beyond, passes);
         }
-        if (disperses(scene_, from) || disperses(scene_, to)) {
+        const auto none = std::pair(Glass::None, 0.0);
+        if (dispersionOf(from) != none || dispersionOf(to) != none) {
             if (media.wavelength == 0) {
                 // The first dispersive surface of this path: from here on its light
                 // depends on the wavelength. The same ray again at each wavelength.

@@ -26,8 +26,6 @@ float indexAt(GpuMaterial m, float nm) {
     float nd = m.params.w, inverseAbbe = m.extra.z;  // glTF's dispersion / 20
     return max(nd + (nd - 1.0) * inverseAbbe * (523655.0 / (nm * nm) - 1.5168), 1.0);
 }
-
-bool dispersive(GpuMaterial m) { return m.extra.z > 0.0 || m.extra.w > 0.0; }
 // [end]
 
 // [region weight]
