@@ -26,6 +26,9 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
     if (!reference) return;
     app.add_flag("--reference", opts.reference, "Also render the CPU double-precision reference and report the error");
     app.add_flag_callback("--no-ui", [&opts] { opts.ui = false; }, "Start the window without its overlay (H shows it)");
+    app.add_option("--shader-source", opts.shaderSource,
+                   "Source tree whose shaders/ a window recompiles when saved or on F5 (default: the one built from)")
+        ->check(CLI::ExistingDirectory);
     app.add_option("--layout", opts.groupSpheres,
                    "Acceleration structures: grouped (the static spheres in one BLAS of boxes, the default) "
                    "or instances (one per object)")

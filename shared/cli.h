@@ -31,6 +31,7 @@ struct Options {
     bool groupSpheres = true;     // --layout grouped (default, 04 on): static spheres in one BLAS; instances: one each
     // From chapter 04 on:
     bool ui = true;               // the window's overlay (viewer.h); --no-ui starts without it
+    std::string shaderSource;     // the tree whose shaders a window reloads (default: the one built from)
 
     int framesToRun() const { return frames > 0 ? frames : (headless ? 10 : 0); }
 };

@@ -188,8 +188,9 @@ std::filesystem::path executableDir() {
     return std::filesystem::read_symlink("/proc/self/exe").parent_path();
 }
 
-VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion, const std::string& relative) {
-    std::filesystem::path path = executableDir() / "shaders" / (relative + ".spv");
+VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion, const std::string& relative,
+                          const std::string& dir) {
+    std::filesystem::path path = (dir.empty() ? executableDir() / "shaders" : std::filesystem::path(dir)) / (relative + ".spv");
     std::ifstream file(path, std::ios::binary | std::ios::ate);
     if (!file) throw std::runtime_error("cannot open shader " + path.string() + " (was it built?)");
     std::vector<uint32_t> code(static_cast<size_t>(file.tellg()) / 4);

@@ -56,7 +56,8 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
 
 // Folder of the running executable: SPIR-V and assets are found beside it.
 std::filesystem::path executableDir();
-// Loads bin/shaders/<relative>.spv into a shader module.
-VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion, const std::string& relative);
+// Loads bin/shaders/<relative>.spv (or <dir>/<relative>.spv) into a shader module.
+VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion, const std::string& relative,
+                          const std::string& dir = {});
 
 }  // namespace rg

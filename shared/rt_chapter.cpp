@@ -76,6 +76,12 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                  : TwoLaunches{};
         FrameLoop loop(app.gpu, app.window.get(), target, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         Viewer viewer(app, opts, scene, rt, target, loop, params);  // a window's camera, overlay and keys
+        viewer.reloadShaders(shaders, [&](const RtShaders& compiled, DeletionQueue& deletion) {  // F5, a save
+            RtPipeline fresh = createRtPipeline(app.gpu, deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
+                                                compiled);
+            if (canTwo) two = createTwoLaunches(app.gpu, deletion, rt.descriptors.layout, compiled, rt.width * rt.height);
+            pipeline = fresh;
+        });
         gpu::RtPush last{};  // the last frame's: what the reference checks
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             uint32_t unchanged = viewer.update(cmd, frame);  // frames since the picture last changed

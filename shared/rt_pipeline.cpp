@@ -21,7 +21,7 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
     auto addStage = [&](VkShaderStageFlagBits stage, const std::string& path) {
         stages.push_back({.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                           .stage = stage,
-                          .module = loadShader(gpu, deletion, path),
+                          .module = loadShader(gpu, deletion, path, shaders.spirvDir),
                           .pName = "main"});
         return uint32_t(stages.size() - 1);
     };

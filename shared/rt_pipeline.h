@@ -21,6 +21,7 @@ struct RtShaders {
     uint32_t raygenConstant = 0;  // the ray generation shader's specialization constant 0 (chapter 10: its launch)
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
+    std::string spirvDir;  // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder
 };
 
 struct RtPipeline {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <utility>
 
@@ -57,7 +58,7 @@ Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target
     loop.swapchainRecreated = [this] { resized(); };
     lastUpdate_ = lastTitle_ = lastRays_ = Clock::now();
     std::printf("Window: left drag orbits, right drag pans, wheel zooms, click picks; W/A/S/D/Q/E fly, R resets, "
-                "C prints the camera, H overlay, F2 screenshot, Esc quits\n");
+                "C prints the camera, H overlay, F2 screenshot, F5 reloads shaders, Esc quits\n");
 }
 
 Viewer::~Viewer() {
@@ -73,6 +74,7 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
     double seconds = std::min(0.1, secondsSince(lastUpdate_));
     lastUpdate_ = Clock::now();
     handleKeys(frame);
+    if (reload_) applyReload();  // F5 or a saved shader
     handleMouse();
     handleFlying(seconds);
     if (overlayVisible_) {
@@ -123,6 +125,8 @@ void Viewer::handleKeys(uint32_t frame) {
             overlayVisible_ = !overlayVisible_;
         } else if (key == GLFW_KEY_F2) {
             screenshot(frame);
+        } else if (key == GLFW_KEY_F5 && reload_) {
+            reload_->request();
         }
     }
 }
@@ -214,8 +218,21 @@ void Viewer::drawOverlay(uint32_t frame) {
     if (ImGui::CollapsingHeader("Material")) materialControls();
     ImGui::PopItemWidth();
     ImGui::TextDisabled("drag orbit, right drag pan, wheel zoom");
-    ImGui::TextDisabled("click pick, WASDQE fly, R reset");
-    ImGui::TextDisabled("C camera, H hide, F2 save, Esc quit");
+    ImGui::TextDisabled("click pick, WASDQE fly, R reset, H hide");
+    ImGui::TextDisabled("C camera, F2 save, F5 reload, Esc quit");
+    std::string status = reload_ ? reload_->status() : std::string();
+    if (const char* error = "shader error: "; status.rfind(error, 0) == 0) {  // its file and line on a line
+        size_t at = status.find(": ", std::strlen(error));
+        status = "shader error in\n" + status.substr(std::strlen(error), at - std::strlen(error)) + ":\n" +
+                 (at == std::string::npos ? "" : status.substr(at + 2));
+    }
+    if (!status.empty()) {
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 280);
+        if (reload_->failed())  // linear: the sRGB swapchain shows (255, 97, 89)
+            ImGui::TextColored(ImVec4(1.0f, 0.12f, 0.1f, 1.0f), "%s", status.c_str());
+        else ImGui::TextDisabled("%s", status.c_str());
+        ImGui::PopTextWrapPos();
+    }
     ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     overlayBox_[0] = at.x, overlayBox_[1] = at.y, overlayBox_[2] = size.x, overlayBox_[3] = size.y;
     ImGui::End();
@@ -312,6 +329,38 @@ void Viewer::resized() {
     cameraDirty_ = true;            // a new aspect ratio
     std::printf("resized: the target is now %ux%u\n", size.width, size.height);
     std::fflush(stdout);
+}
+// [end]
+
+void Viewer::reloadShaders(const RtShaders& shaders, Rebuild rebuild) {
+    if (!app_.window) return;
+    reload_ = std::make_unique<ShaderReload>(
+        shaders, opts_.shaderSource.empty() ? builtSourceRoot() : std::filesystem::path(opts_.shaderSource));
+    rebuild_ = std::move(rebuild);
+}
+
+// [region viewer_reload]
+// New stages compiled: the frames in flight still trace with the old
+// pipeline, so it goes only after they are done, and only once the new one
+// was made. The camera stays; the average starts again.
+void Viewer::applyReload() {
+    std::optional<RtShaders> compiled = reload_->poll();
+    bool failed = reload_->failed();
+    if (failed && !reloadFailed_) overlayVisible_ = true;  // where the error is shown
+    reloadFailed_ = failed;
+    if (!compiled) return;
+    auto begin = Clock::now();
+    VK_CHECK(vkDeviceWaitIdle(app_.gpu.device));
+    auto next = std::make_unique<DeletionQueue>();
+    try {
+        rebuild_(*compiled, *next);
+    } catch (const std::exception& e) {  // what it made so far goes with `next`
+        reload_->rebuildFailed(e.what());
+        return;
+    }
+    reloaded_ = std::move(next);  // destroys the pipeline before it
+    reload_->rebuilt(secondsSince(begin));
+    changed_ = true;
 }
 // [end]
 

@@ -5,7 +5,7 @@
 //
 //   mouse: left drag orbits, right or middle drag pans, wheel zooms, left click picks
 //   keys:  W/A/S/D fly, Q/E down/up (Shift: faster), R reset, C print camera,
-//          H overlay, F2 screenshot + report, Esc or Ctrl+Q quit
+//          H overlay, F2 screenshot + report, F5 reload shaders, Esc or Ctrl+Q quit
 #pragma once
 #include "app.h"
 #include "camera_control.h"
@@ -14,8 +14,10 @@
 #include "params.h"
 #include "reference.h"
 #include "rt_scene.h"
+#include "shader_reload.h"
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -35,6 +37,13 @@ public:
     // progressive average). Headless: returns `frame`.
     uint32_t update(VkCommandBuffer cmd, uint32_t frame);
 
+    // Shader hot reload (shader_reload.h), in a window: when a source of
+    // `shaders` is saved, or on F5, and it compiles, `rebuild` makes the
+    // pipeline again from the new stages, its objects in the queue it gets
+    // (the previous reload's go when it returns). Headless: nothing.
+    using Rebuild = std::function<void(const RtShaders& compiled, DeletionQueue& deletion)>;
+    void reloadShaders(const RtShaders& shaders, Rebuild rebuild);
+
 private:
     void handleKeys(uint32_t frame);
     void handleMouse();
@@ -46,6 +55,7 @@ private:
     void screenshot(uint32_t frame);
     void measureRays();
     void pick(double x, double y);
+    void applyReload();
 
     App& app_;
     Options& opts_;
@@ -60,6 +70,10 @@ private:
     double overlayBox_[4] = {0, 0, 0, 0};  // the overlay's window as last drawn: x, y, width, height
     DeletionQueue resizedTarget_;  // the target and ray counts of the last resize
     std::optional<ReferenceRenderer> picker_;  // one CPU ray per click, built at the first click
+    std::unique_ptr<ShaderReload> reload_;
+    Rebuild rebuild_;
+    std::unique_ptr<DeletionQueue> reloaded_;  // the pipeline of the last reload
+    bool reloadFailed_ = false;
 
     uint32_t firstFrame_ = 0;  // of the current progressive average
     bool changed_ = false;     // view or parameter changed: restart the average

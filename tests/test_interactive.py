@@ -5,7 +5,7 @@ Starts its own Xvfb (whose framebuffer file is the screenshot), runs the
 chapter with the validation layer, and moves the mouse and presses keys with
 xdotool. Standard library only.
 
-    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--size WxH]
+    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--size WxH]
 
 Every chapter: a drag changes the picture, R brings the first one back, Esc
 ends the process with exit 0 and no validation message. --full (chapter
@@ -13,6 +13,10 @@ ends the process with exit 0 and no validation message. --full (chapter
 moved camera; the overlay is in the window but not in the F2 PNG, which
 equals the headless PNG; a click picks a material; the overlay's depth
 slider changes the parameter and the picture; a resize re-creates the target.
+--reload (at 480x270, where the overlay's error line fits) edits the sky's
+miss shader in a copy of the shader tree: the picture changes; a broken
+edit shows its file and line in the overlay and the last picture stays; the
+fix brings the first picture back; F5 compiles again.
 """
 import json
 import os
@@ -25,8 +29,9 @@ import time
 
 EXE, OUT, SCENE = (os.path.abspath(a) for a in sys.argv[1:4])
 FULL = "--full" in sys.argv[4:]
+RELOAD = "--reload" in sys.argv[4:]
 NAME = os.path.basename(EXE)
-W, H = (320, 180) if FULL else (160, 90)
+W, H = (480, 270) if RELOAD else (320, 180) if FULL else (160, 90)
 if "--size" in sys.argv:
     W, H = map(int, sys.argv[sys.argv.index("--size") + 1].split("x"))
 BLUE_SPHERE = (203 * W // 320, 125 * H // 180)  # where the default scene's small blue sphere is
@@ -224,6 +229,13 @@ ENV = dict(os.environ, DISPLAY=display)
 ENV.pop("WAYLAND_DISPLAY", None)
 log = os.path.join(OUT, "stdout.txt")
 args = [EXE, "--validation", "--width", str(W), "--height", str(H), "--no-ui", "--output", "window.png"]
+if RELOAD:  # a copy of what the shaders read, to edit
+    TREE = os.path.join(OUT, "tree")
+    SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    shutil.copytree(os.path.join(SOURCE, "shaders"), os.path.join(TREE, "shaders"))
+    os.makedirs(os.path.join(TREE, "shared"))
+    shutil.copy(os.path.join(SOURCE, "shared", "host_device.h"), os.path.join(TREE, "shared"))
+    args += ["--shader-source", TREE]
 with open(log, "w") as out:
     chapter = subprocess.Popen(args, cwd=OUT, env=ENV, stdout=out, stderr=subprocess.STDOUT)
 try:
@@ -260,6 +272,59 @@ try:
     check(wait_for('"camera": {"fov_y_deg"', log), "C prints the camera as a scene-file block")
     key(box, "r")
     shot_when(restored, "R after flying")
+
+    if RELOAD:
+        sky = os.path.join(TREE, "shaders", "common", "sky.rmiss")
+        original = open(sky).read()
+        call = "skyRadiance(gl_WorldRayDirectionEXT);"
+        assert call in original
+
+        def save(text):
+            with open(sky, "w") as f:
+                f.write(text)
+
+        def reloads(count):
+            end = time.time() + 60
+            while time.time() < end:
+                if open(log).read().count("shaders: reloaded") >= count:
+                    return True
+                time.sleep(0.2)
+            return False
+
+        def red(p):  # the overlay's error text
+            return p[0] > 180 and p[0] - p[1] > 80 and p[0] - p[2] > 80
+
+        def red_text(before, after):
+            """Where pixels became the error's red."""
+            return {(x, y) for y, (a, b) in enumerate(zip(before, after)) for x, (p, q) in enumerate(zip(a, b))
+                    if red(q) and not red(p)}
+
+        right = (W * 3 // 4, 0, W, H)  # beside the overlay (310 px wide)
+        save(original.replace(call, call[:-1] + ".bgr;"))  # the sky's red and blue swapped
+        check(reloads(1), "saving an edited shader reloads it")
+        edited = shot_when(lambda s: changed(s, right), "the edited shader changes the picture")
+        check(changed(edited, right), f"the edited shader changes the picture ({diff(first, edited, right):.1f})")
+
+        save(original.replace("skyRadiance(", "skyRadianc("))
+        check(wait_for("shader error: shaders/common/sky.rmiss:13: 'skyRadianc'", log, 60),
+              "a compile error names the file and line")
+        broken = shot_when(lambda s: len(red_text(edited, s)) > 20, "the overlay shows the error in red")
+        write_png(os.path.join(OUT, "window_shader_error.png"), broken)
+        error_text = red_text(edited, broken)
+        check(len(error_text) > 20, f"the overlay shows the error ({len(error_text)} red pixels)")
+        time.sleep(1)  # frames go on with the last good pipeline
+        check(diff(edited, window_shot(box), right) < 0.5, "the last good pipeline keeps running")
+
+        save(original)
+        check(reloads(2), "the fixed shader reloads")
+        fixed = shot_when(lambda s: diff(first, s, right) < 0.5, "the fix brings the first picture back")
+        check(diff(first, fixed, right) < 0.5, f"the fix brings the first picture back ({diff(first, fixed, right):.2f})")
+        still = sum(red(fixed[y][x]) for x, y in error_text)
+        check(still < len(error_text) // 20, f"the error is gone from the overlay ({still} red pixels left)")
+        key(box, "F5")
+        check(reloads(3), "F5 compiles and reloads the shaders")
+        key(box, "h")  # the error showed the overlay: hide it again
+        shot_when(restored, "H hides the overlay again")
 
     if FULL:
         drag(box, -50, 0, button=3)  # right drag: pan

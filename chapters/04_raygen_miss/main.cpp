@@ -54,6 +54,11 @@ int main(int argc, char** argv) {
         // In a window: a camera to fly, an overlay with timings, a target that
         // follows the window's size (shared/viewer.h). Headless: nothing.
         rg::Viewer viewer(app, opts, scene, rt, target, loop);
+        // Saving a shader (or F5) compiles it again: then the pipeline from it.
+        viewer.reloadShaders(shaders, [&](const rg::RtShaders& compiled, rg::DeletionQueue& deletion) {
+            pipeline = rg::createRtPipeline(app.gpu, deletion, rt.descriptors.layout, sizeof(rg::gpu::RtPush),
+                                            compiled);
+        });
         rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             viewer.update(cmd, frame);  // records the camera's upload when it moved
             rg::gpu::RtPush push{.frame = frame};
