@@ -228,7 +228,7 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
     }
 
     // Letterbox: keep the render's aspect ratio inside the window.
-    VkExtent2D src = target_.extent, dst = window_->extent;
+    VkExtent2D src = shown.width > 0 ? shown : target_.extent, dst = window_->extent;
     double scale = std::min(double(dst.width) / src.width, double(dst.height) / src.height);
     int32_t w = std::max(1, int32_t(src.width * scale)), h = std::max(1, int32_t(src.height * scale));
     int32_t x = (int32_t(dst.width) - w) / 2, y = (int32_t(dst.height) - h) / 2;

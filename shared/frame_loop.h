@@ -42,6 +42,9 @@ public:
     // resize re-created the swapchain, with the device idle.
     std::function<void(VkCommandBuffer cmd, uint32_t imageIndex)> overlay;
     std::function<void()> swapchainRecreated;
+    // The target's top left corner that the window shows (0x0: all of it):
+    // the viewer traces a smaller image while a slow view moves.
+    VkExtent2D shown{};
 
     // The target was re-created (a resize): moves it into GENERAL layout.
     void prepareTarget();

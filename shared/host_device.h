@@ -204,8 +204,10 @@ struct RtPush {
     float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
     float wavelength;    // chapter 13: > 0, every path at this wavelength (nm); 0: one drawn per path
     uvec2 treeQueue;     // the tree queue's device address, low and high 32 bits (chapter 10)
+    float exposure;      // 2^EV, what the written radiance is scaled by (--exposure; chapter 05 on)
+    uint pad0;
 };
-RG_SIZE(RtPush, 40);
+RG_SIZE(RtPush, 48);
 
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {

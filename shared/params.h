@@ -27,6 +27,7 @@ struct Param {
     bool inverted = false;     // Toggle: the flag clears the value (--no-accumulate)
     std::vector<std::string> choices;
     bool live = true;          // false: read once at start (the overlay shows it greyed)
+    std::string section;       // the overlay's section: "" Parameters, "view" View (the camera, exposure, lights)
     // Checks a command-line value; returns "" or the reason it is refused.
     std::function<std::string(const std::string&)> check;
 };

@@ -697,10 +697,10 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
             for (uint32_t y = t; y < height; y += threads, ++rowsDone)
                 for (uint32_t x = 0; x < width && !interrupted(); ++x) {  // Ctrl-C: the rest stays unset
                     double stdError = 0;
-                    glm::dvec3 c = shade(settings, x, y, width, height, &stdError);
+                    glm::dvec3 c = shade(settings, x, y, width, height, &stdError) * settings.exposure;
                     float* p = &image.rgba[4 * (size_t(y) * width + x)];
                     p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
-                    if (settings.stage == ReferenceStage::Rough) p[3] = float(stdError);
+                    if (settings.stage == ReferenceStage::Rough) p[3] = float(stdError * settings.exposure);
                 }
         });
     Progress progress("CPU reference", height);  // on a terminal only

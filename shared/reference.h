@@ -44,6 +44,7 @@ struct ReferenceSettings {
     double wavelength = 0;  // chapter 13: >= 380, every path at this wavelength (nm); else:
     uint32_t frames = 1;      // the frames accumulated, one wavelength per path in each,
     uint32_t firstFrame = 0;  // from this frame on
+    double exposure = 1;      // 2^EV: the image is the radiance times this (--exposure)
 };
 
 struct ReferenceHit {

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 
 namespace rg {
 
@@ -25,6 +26,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     params.integer("--sphere-mesh", settings.sphereMesh,
                    "Spheres as icospheres subdivided this often (0: analytic spheres)", 0, 7)
         .live = false;  // the acceleration structures are built once
+    params.number("--exposure", settings.exposure, "Exposure in stops: the image is the light times 2^EV", -10, 10)
+        .section = "view";  // the overlay's View section, with the camera's and the lights' controls
     auto extra = [&](CLI::App& app, Options& o) {
         addSceneOptions(app, o, true);
         params.addTo(app);
@@ -85,6 +88,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         gpu::RtPush last{};  // the last frame's: what the reference checks
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             uint32_t unchanged = viewer.update(cmd, frame);  // frames since the picture last changed
+            VkExtent2D size = viewer.launchSize();  // smaller while a slow view moves
             gpu::RtPush push{
                 .frame = frame,
                 .maxDepth = uint32_t(settings.maxDepth),
@@ -94,18 +98,29 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .accumulated = settings.accumulate ? unchanged : 0,
                 .epsilon = settings.epsilon,
                 .wavelength = settings.wavelength,
+                .exposure = std::exp2(settings.exposure),
             };
             last = push;
             if (canTwo)
-                recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, rt.width, rt.height,
+                recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, size.width, size.height,
                                Launches(settings.launches), frame);
             else
-                recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
+                recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), size.width, size.height);
         });
+        if (viewer.previewed()) {  // closed while moving: the PNG, the report and --reference get a full frame
+            last.accumulated = 0;
+            submitOnce(app.gpu, [&](VkCommandBuffer cmd) {
+                memoryBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+                recordTrace(cmd, pipeline, rt.descriptors.set, &last, sizeof(last), rt.width, rt.height);
+            });
+        }
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples,
                                     .wavelength = settings.wavelength, .frames = last.accumulated + 1,
-                                    .firstFrame = last.frame - last.accumulated};
+                                    .firstFrame = last.frame - last.accumulated, .exposure = last.exposure};
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},  // the last frame's launches
                                 {"parameters", params.values()}};
         if (canTwo) extra["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},

@@ -21,6 +21,7 @@ struct RtChapterSettings {
     int sphereMesh = 0;        // > 0: spheres as icospheres of this subdivision level (performance.md)
     float wavelength = 0;  // chapter 13: >= 380, every path at this wavelength (nm); else one drawn per path
     int launches = -1;  // chapter 10's --launches: 0 auto, 1 one, 2 two (two_launches.h); -1: one, no choice
+    float exposure = 0;  // --exposure, in stops: the image is the radiance times 2^exposure
 };
 
 struct RtChapter {

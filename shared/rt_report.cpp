@@ -55,6 +55,7 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
 
     nlohmann::json report = makeReport(opts, app.gpu, times);
     report["scene"] = scene.path;
+    report["camera"] = cameraToJson(scene.camera, scene.origin);  // a window's last view, to render again
     uint64_t rays = countRays(app.gpu, rt);  // counted by the ray generation shader, last frame
     double medianMs = median(times.gpuMs);
     report["rays_per_frame"] = rays;

@@ -73,6 +73,10 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
     if (!app_.window) return frame;  // headless: one fixed view, one long average
     double seconds = std::min(0.1, secondsSince(lastUpdate_));
     lastUpdate_ = Clock::now();
+    if (pendingShot_ && frame > 0 && frameScales_[frame - 1] == 1) {  // the window shows a full frame
+        pendingShot_ = false;
+        screenshot(frame);
+    }
     handleKeys(frame);
     if (reload_) applyReload();  // F5 or a saved shader
     handleMouse();
@@ -82,7 +86,7 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         drawOverlay(frame);
     }
 
-    bool upload = cameraDirty_ || materialDirty_;
+    bool upload = cameraDirty_ || materialDirty_ || lightsDirty_;
     if (upload) beforeUpload(cmd);
     if (cameraDirty_) {  // the two matrices at the start of RtCamera (host_device.h)
         scene_.camera = camera_.camera();  // the report and --reference see this view
@@ -94,9 +98,26 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         gpu::GpuMaterial m = toGpuMaterial(scene_.materials[size_t(selectedMaterial_)], scene_, rt_.firstTexel);
         vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_), sizeof m, &m);
     }
+    if (lightsDirty_) {  // all of them: a few 32-byte records
+        std::vector<gpu::GpuLight> lights;
+        for (const PointLight& l : scene_.lights)
+            lights.push_back({glm::vec4(glm::vec3(l.position), 1), glm::vec4(glm::vec3(l.intensity), 0)});
+        vkCmdUpdateBuffer(cmd, rt_.lights.handle, 0, lights.size() * sizeof lights[0], lights.data());
+    }
     if (upload) afterUpload(cmd);
+    if (upload || changed_) lastChange_ = Clock::now();
+    uint32_t scale = previewScale(secondsSince(lastChange_) < 0.25 &&
+                                  !glfwWindowShouldClose(app_.window->handle()));  // the last frame is full
+    changed_ = changed_ || scale != scale_;  // a new size: a new average
+    if (scale > 1 && !std::exchange(previewNoted_, true)) {
+        std::printf("slow frames: 1/%u of the width and height while the view moves\n", scale);
+        std::fflush(stdout);
+    }
+    scale_ = scale;
+    frameScales_.push_back(uint8_t(scale));  // index: frame
+    loop_.shown = launchSize();
     if (upload || changed_) firstFrame_ = frame;  // a new picture: restart the average
-    cameraDirty_ = materialDirty_ = changed_ = false;
+    cameraDirty_ = materialDirty_ = lightsDirty_ = changed_ = false;
 
     if (secondsSince(lastTitle_) > 0.25 && !loop_.times().gpuMs.empty()) {
         char title[256];
@@ -111,7 +132,9 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
 
 void Viewer::handleKeys(uint32_t frame) {
     bool typing = overlayVisible_ && overlay_->wantsKeyboard();  // into an overlay field
+    tapped_.clear();
     for (auto [key, mods] : app_.window->takeKeys()) {
+        tapped_.push_back(key);  // pressed since the last frame, maybe let go again (handleFlying)
         if (key == GLFW_KEY_ESCAPE || (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)))
             glfwSetWindowShouldClose(app_.window->handle(), GLFW_TRUE);
         if (typing) continue;
@@ -124,7 +147,8 @@ void Viewer::handleKeys(uint32_t frame) {
         } else if (key == GLFW_KEY_H) {
             overlayVisible_ = !overlayVisible_;
         } else if (key == GLFW_KEY_F2) {
-            screenshot(frame);
+            if (scale_ > 1) pendingShot_ = true;  // a preview is on screen: the next full frame
+            else screenshot(frame);
         } else if (key == GLFW_KEY_F5 && reload_) {
             reload_->request();
         }
@@ -175,7 +199,12 @@ void Viewer::handleFlying(double seconds) {
     GLFWwindow* w = app_.window->handle();
     if ((overlayVisible_ && overlay_->wantsKeyboard()) || glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS)
         return;
-    auto held = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0 : 0.0; };
+    // Held now, or pressed and let go since the last frame: a short tap
+    // still moves when a frame takes longer than the tap (lavapipe).
+    auto held = [&](int key) {
+        bool tapped = std::find(tapped_.begin(), tapped_.end(), key) != tapped_.end();
+        return glfwGetKey(w, key) == GLFW_PRESS || tapped ? 1.0 : 0.0;
+    };
     glm::dvec3 move{held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q),
                     held(GLFW_KEY_W) - held(GLFW_KEY_S)};
     if (move == glm::dvec3(0)) return;
@@ -209,17 +238,25 @@ void Viewer::drawOverlay(uint32_t frame) {
     double frameMs = times.cpuMs.empty() ? 0.0 : recent(times.cpuMs);
     ImGui::Text("GPU %.2f ms  %.1f fps  %.1f Mrays/s", times.gpuMs.empty() ? 0.0 : recent(times.gpuMs),
                 frameMs > 0 ? 1000 / frameMs : 0.0, mraysPerS_);
-    ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height, (unsigned long long)raysPerFrame_,
-                frame - firstFrame_ + 1);
+    if (scale_ > 1)
+        ImGui::Text("%ux%u at 1/%u while moving", rt_.width, rt_.height, scale_);
+    else
+        ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height, (unsigned long long)raysPerFrame_,
+                    frame - firstFrame_ + 1);
     ImGui::PushItemWidth(140);
-    if (!params_.all().empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
-        parameterControls();
+    bool chapterParams = std::any_of(params_.all().begin(), params_.all().end(),
+                                     [](const Param& p) { return p.section.empty(); });
+    if (chapterParams && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
+        parameterControls("");
+    if (ImGui::CollapsingHeader("View and light")) viewControls();
     if (std::exchange(openMaterial_, false)) ImGui::SetNextItemOpen(true);  // a click just picked one
     if (ImGui::CollapsingHeader("Material")) materialControls();
     ImGui::PopItemWidth();
-    ImGui::TextDisabled("drag orbit, right drag pan, wheel zoom");
-    ImGui::TextDisabled("click pick, WASDQE fly, R reset, H hide");
-    ImGui::TextDisabled("C camera, F2 save, F5 reload, Esc quit");
+    ImGui::TextDisabled("keys: WASDQE R C H F2 F5 Esc (hover)");  // every key, in one line
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("left drag orbits, right drag pans, wheel zooms, click picks\n"
+                          "W/A/S/D/Q/E fly (Shift: 4x), R resets the view, C prints the camera\n"
+                          "H hides this, F2 saves a screenshot, F5 reloads the shaders, Esc quits");
     std::string status = reload_ ? reload_->status() : std::string();
     if (const char* error = "shader error: "; status.rfind(error, 0) == 0) {  // its file and line on a line
         size_t at = status.find(": ", std::strlen(error));
@@ -238,10 +275,11 @@ void Viewer::drawOverlay(uint32_t frame) {
     ImGui::End();
 }
 
-// One control per declared parameter (params.h): the command line's names,
-// ranges and choices, so the two always agree.
-void Viewer::parameterControls() {
+// One control per declared parameter of a section (params.h): the command
+// line's names, ranges and choices, so the two always agree.
+void Viewer::parameterControls(const std::string& section) {
     for (const Param& p : params_.all()) {
+        if (p.section != section) continue;
         ImGui::BeginDisabled(!p.live);
         const char* label = p.label.c_str();
         bool edited = false;
@@ -273,6 +311,36 @@ void Viewer::parameterControls() {
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip("%s %s%s", p.flag.c_str(), p.help.c_str(), p.live ? "" : " (read at start only)");
         changed_ = changed_ || edited;
+    }
+}
+
+// The camera's field of view, the exposure (a parameter: --exposure) and
+// each point light's position (in the scene file's coordinates) and intensity.
+void Viewer::viewControls() {
+    float fov = float(camera_.camera().fovYDeg);
+    if (ImGui::SliderFloat("fov", &fov, 5, 120, "%.1f deg", ImGuiSliderFlags_AlwaysClamp)) {
+        camera_.setFovY(fov);
+        cameraDirty_ = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("vertical field of view (the scene's camera fov_y_deg; R resets)");
+    parameterControls("view");
+    const Camera& c = camera_.camera();
+    float speed = float(0.005 * glm::length(c.lookAt - c.position));  // per pixel dragged
+    for (size_t i = 0; i < scene_.lights.size(); ++i) {
+        PointLight& light = scene_.lights[i];
+        ImGui::PushID(int(i));
+        glm::vec3 at = glm::vec3(light.position - scene_.origin);  // file = p - origin
+        std::string label = "light " + std::to_string(i + 1);
+        if (ImGui::DragFloat3(label.c_str(), &at.x, speed, 0, 0, "%.2f")) {
+            light.position = glm::dvec3(at) + scene_.origin;
+            lightsDirty_ = true;
+        }
+        float v[3] = {float(light.intensity.r), float(light.intensity.g), float(light.intensity.b)};
+        if (ImGui::ColorEdit3("intensity", v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+            light.intensity = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(0));
+            lightsDirty_ = true;
+        }
+        ImGui::PopID();
     }
 }
 
@@ -364,6 +432,25 @@ void Viewer::applyReload() {
 }
 // [end]
 
+// [region viewer_preview]
+// Responsive while frames are slow (lavapipe: chapter 13 takes over a second
+// at 800x450). While the view changes, trace 1/s of the width and height,
+// with s such that a frame takes about kPreviewMs by the last measured one;
+// once it rests for a quarter of a second, full frames again.
+uint32_t Viewer::previewScale(bool moving) const {
+    constexpr double kPreviewMs = 50;
+    const std::vector<double>& gpuMs = loop_.times().gpuMs;  // gpuMs[k]: frame k's
+    if (!moving || gpuMs.empty() || gpuMs.size() > frameScales_.size()) return 1;
+    double s = frameScales_[gpuMs.size() - 1];
+    double fullMs = gpuMs.back() * s * s;  // that frame at full size
+    return uint32_t(std::clamp(std::ceil(std::sqrt(fullMs / kPreviewMs)), 1.0, 8.0));
+}
+
+VkExtent2D Viewer::launchSize() const {
+    return {(rt_.width + scale_ - 1) / scale_, (rt_.height + scale_ - 1) / scale_};
+}
+// [end]
+
 void Viewer::measureRays() {
     VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the counts of finished frames only
     raysPerFrame_ = countRays(app_.gpu, rt_);
@@ -386,6 +473,11 @@ void Viewer::screenshot(uint32_t frame) {
     report["accumulated_frames"] = frame - firstFrame_;
     if (selectedMaterial_ >= 0) report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
     report["parameters"] = params_.values();
+    report["lights"] = nlohmann::json::array();  // as the View and light section has them
+    for (const PointLight& l : scene_.lights) {
+        glm::dvec3 p = l.position - scene_.origin;  // the scene file's coordinates
+        report["lights"].push_back({{"position", {p.x, p.y, p.z}}, {"intensity", {l.intensity.r, l.intensity.g, l.intensity.b}}});
+    }
     writeReport(stem + ".json", report);
     std::printf("F2: wrote %s.png and %s.json\n", stem.c_str(), stem.c_str());
     std::fflush(stdout);

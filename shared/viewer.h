@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace rg {
 
@@ -37,6 +38,12 @@ public:
     // progressive average). Headless: returns `frame`.
     uint32_t update(VkCommandBuffer cmd, uint32_t frame);
 
+    // How many pixels to trace this frame: the target's size, or while a
+    // view whose frames are slow moves, 1/s of its width and height (the
+    // window shows that corner, scaled up). previewed(): the last frame was such.
+    VkExtent2D launchSize() const;
+    bool previewed() const { return scale_ > 1; }
+
     // Shader hot reload (shader_reload.h), in a window: when a source of
     // `shaders` is saved, or on F5, and it compiles, `rebuild` makes the
     // pipeline again from the new stages, its objects in the queue it gets
@@ -49,13 +56,15 @@ private:
     void handleMouse();
     void handleFlying(double seconds);
     void drawOverlay(uint32_t frame);
-    void parameterControls();
+    void parameterControls(const std::string& section);
+    void viewControls();
     void materialControls();
     void resized();
     void screenshot(uint32_t frame);
     void measureRays();
     void pick(double x, double y);
     void applyReload();
+    uint32_t previewScale(bool moving) const;
 
     App& app_;
     Options& opts_;
@@ -74,6 +83,12 @@ private:
     Rebuild rebuild_;
     std::unique_ptr<DeletionQueue> reloaded_;  // the pipeline of the last reload
     bool reloadFailed_ = false;
+    uint32_t scale_ = 1;                 // this frame traces 1/scale_ of the width and height
+    std::vector<uint8_t> frameScales_;   // each frame's scale_, by frame number
+    std::chrono::steady_clock::time_point lastChange_{};     // of the view, a light, a material or a parameter
+    bool pendingShot_ = false;           // F2 during a preview: taken at the next full frame
+    bool previewNoted_ = false;
+    std::vector<int> tapped_;  // keys pressed since the last frame
 
     uint32_t firstFrame_ = 0;  // of the current progressive average
     bool changed_ = false;     // view or parameter changed: restart the average
@@ -81,6 +96,7 @@ private:
     int selectedMaterial_ = -1;
     bool openMaterial_ = false;  // a pick opens the overlay's material section
     bool materialDirty_ = false;
+    bool lightsDirty_ = false;
     // Mouse drags: where the button went down, whether ImGui had the mouse then.
     int dragButton_ = -1;
     double lastX_ = 0, lastY_ = 0, pressX_ = 0, pressY_ = 0;

@@ -41,10 +41,18 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
         if (action == GLFW_PRESS) static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_.push_back({key, mods});
     });
+    // Where the pointer was when a button went down: the last motion event
+    // before it. glfwGetCursorPos asks the X server for the pointer now,
+    // which after a slow frame (a second on lavapipe) is where a drag went.
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
+        Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        self->cursor_[0] = x, self->cursor_[1] = y, self->cursorKnown_ = true;
+    });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
-        double x = 0, y = 0;
-        glfwGetCursorPos(w, &x, &y);
-        static_cast<Window*>(glfwGetWindowUserPointer(w))->buttons_.push_back({button, action == GLFW_PRESS, x, y});
+        Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        double x = self->cursor_[0], y = self->cursor_[1];
+        if (!self->cursorKnown_) glfwGetCursorPos(w, &x, &y);  // no motion yet
+        self->buttons_.push_back({button, action == GLFW_PRESS, x, y});
     });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += y;

@@ -64,6 +64,8 @@ private:
     bool resized_ = false;
     std::vector<KeyPress> keys_;
     std::vector<ButtonEvent> buttons_;
+    double cursor_[2] = {0, 0};  // from the last motion event
+    bool cursorKnown_ = false;
     double scroll_ = 0;
     std::string title_;
 };

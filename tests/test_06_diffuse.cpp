@@ -1,6 +1,8 @@
 // Chapter 06's own experiment; the reference and hard-case tests of every
 // shading chapter are in test_reference.cpp.
 #include "harness.h"
+#include "output.h"
+#include "reference.h"
 
 namespace {
 
@@ -25,6 +27,41 @@ TEST(Chapter06, NonPositiveEpsilonIsOneClearLine) {
         EXPECT_EQ(r.exitCode, 2) << r.output;
         EXPECT_NE(r.output.find("--fixed-epsilon: must be a positive distance"), std::string::npos) << r.output;
     }
+}
+
+// --exposure (the overlay's View section) scales what is written, nothing
+// else: one stop doubles every pixel exactly, also where frames accumulate
+// (chapter 11 stores the exposed mean and reads it back), and the reference
+// scales the same way.
+TEST(Exposure, OneStopDoublesEveryPixel) {
+    for (const char* exe : {RG_EXE_06, RG_EXE_11}) {
+        std::string dir = rgtest::outputDir(std::string("exposure_") + (exe == std::string(RG_EXE_06) ? "06" : "11"));
+        for (const char* ev : {"0", "1"}) {
+            rgtest::RunResult r = rgtest::run(exe, {"--headless", "--validation", "--width", "96", "--height", "54",
+                                                    "--frames", "3", "--exposure", ev,
+                                                    "--output", dir + "/ev" + ev + ".png"});
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+        }
+        rg::FloatImage a = rg::readPfm(dir + "/ev0.pfm"), b = rg::readPfm(dir + "/ev1.pfm");
+        ASSERT_EQ(a.rgba.size(), b.rgba.size());
+        size_t differ = 0;
+        double lit = 0;
+        for (size_t i = 0; i < a.rgba.size(); ++i) {
+            if (i % 4 == 3) continue;  // alpha
+            differ += b.rgba[i] != 2 * a.rgba[i];
+            lit += a.rgba[i];
+        }
+        EXPECT_EQ(differ, 0u) << exe;
+        EXPECT_GT(lit, 0.1 * double(a.rgba.size())) << exe << ": a picture, not black";
+    }
+    nlohmann::json report = rgtest::expectMatchesReference(RG_EXE_06, "", "exposure_06_reference", {"--exposure", "1"});
+    EXPECT_EQ(report["parameters"]["exposure"], 1.0);
+}
+
+TEST(Exposure, OutOfRangeIsOneClearLine) {
+    rgtest::RunResult r = rgtest::run(RG_EXE_06, {"--headless", "--exposure", "11"});
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("--exposure"), std::string::npos) << r.output;
 }
 
 }  // namespace

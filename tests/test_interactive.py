@@ -5,18 +5,24 @@ Starts its own Xvfb (whose framebuffer file is the screenshot), runs the
 chapter with the validation layer, and moves the mouse and presses keys with
 xdotool. Standard library only.
 
-    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--size WxH]
+    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--preview] [--size WxH]
 
 Every chapter: a drag changes the picture, R brings the first one back, Esc
 ends the process with exit 0 and no validation message. --full (chapter
 10: it has a depth parameter) adds: a right drag pans; F2's report has the
 moved camera; the overlay is in the window but not in the F2 PNG, which
 equals the headless PNG; a click picks a material; the overlay's depth
-slider changes the parameter and the picture; a resize re-creates the target.
+slider changes the parameter and the picture; the View and light section's
+field of view, light position and exposure change the picture and F2's
+report; a resize re-creates the target.
 --reload (at 480x270, where the overlay's error line fits) edits the sky's
 miss shader in a copy of the shader tree: the picture changes; a broken
 edit shows its file and line in the overlay and the last picture stays; the
 fix brings the first picture back; F5 compiles again.
+--preview (a chapter whose full frames are slow: 13 on lavapipe, at
+480x270) drags for two seconds: the window shows many pictures meanwhile
+(a smaller launch), then full frames once it rests; Esc during a drag still
+writes a full frame as the run's PNG.
 """
 import json
 import os
@@ -30,8 +36,9 @@ import time
 EXE, OUT, SCENE = (os.path.abspath(a) for a in sys.argv[1:4])
 FULL = "--full" in sys.argv[4:]
 RELOAD = "--reload" in sys.argv[4:]
+PREVIEW = "--preview" in sys.argv[4:]
 NAME = os.path.basename(EXE)
-W, H = (480, 270) if RELOAD else (320, 180) if FULL else (160, 90)
+W, H = (480, 270) if RELOAD or PREVIEW else (320, 180) if FULL else (160, 90)
 if "--size" in sys.argv:
     W, H = map(int, sys.argv[sys.argv.index("--size") + 1].split("x"))
 BLUE_SPHERE = (203 * W // 320, 125 * H // 180)  # where the default scene's small blue sphere is
@@ -192,6 +199,19 @@ def stable_shot(seconds=60):
     return previous
 
 
+def settled_shot(seconds=30):
+    """The window once two shots half a second apart agree: past a slow
+    machine's short preview at a smaller size (viewer.h)."""
+    previous, end = window_shot(BOX), time.time() + seconds
+    while time.time() < end:
+        time.sleep(0.5)
+        shot = window_shot(BOX)
+        if diff(previous, shot) < 0.3:
+            return shot
+        previous = shot
+    return previous
+
+
 def drag(box, dx, dy, button=1):
     x0, y0, w, h = box
     cx, cy = x0 + w * 3 // 4, y0 + h * 3 // 4  # away from the overlay (top left)
@@ -302,7 +322,8 @@ try:
         right = (W * 3 // 4, 0, W, H)  # beside the overlay (310 px wide)
         save(original.replace(call, call[:-1] + ".bgr;"))  # the sky's red and blue swapped
         check(reloads(1), "saving an edited shader reloads it")
-        edited = shot_when(lambda s: changed(s, right), "the edited shader changes the picture")
+        shot_when(lambda s: changed(s, right), "the edited shader changes the picture")
+        edited = settled_shot()
         check(changed(edited, right), f"the edited shader changes the picture ({diff(first, edited, right):.1f})")
 
         save(original.replace("skyRadiance(", "skyRadianc("))
@@ -384,20 +405,102 @@ try:
         f3 = read_png_rgb(os.path.join(OUT, f"{NAME}_shot3.png"))
         check(diff(f2, f3, right) > 2, f"depth 0 changes the picture live ({diff(f2, f3, right):.1f})")
 
+        # The View and light section (its header 194 px down, under the
+        # parameters): the fov slider's left end is 5 degrees, a drag on the
+        # first light's x moves it, the exposure slider's left end is -10 EV.
+        def brightness(s, region):
+            x0, y0, x1, y1 = region
+            return sum(sum(s[y][x]) for y in range(y0, y1) for x in range(x0, x1)) / ((x1 - x0) * (y1 - y0))
+        xdotool("mousemove", box[0] + 60, box[1] + 194, "click", 1)
+        time.sleep(1)
+        wide = window_shot(box)
+        xdotool("mousemove", box[0] + 18, box[1] + 216, "click", 1)
+        narrow = shot_when(lambda s: diff(wide, s, right) > 2, "the fov slider changes the view")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot4.png", log), "F2 after the fov slider")
+        fov = json.load(open(os.path.join(OUT, f"{NAME}_shot4.json")))
+        check(fov["camera"]["fov_y_deg"] == 5, f"the fov slider set 5 degrees ({fov['camera']['fov_y_deg']})")
+        light = fov["lights"][0]["position"]
+        key(box, "r")  # back to 45 degrees: the light and exposure act on the whole view
+        wide = shot_when(lambda s: diff(wide, s, right) < 0.5, "R brings the field of view back")
+        xdotool("mousemove", box[0] + 30, box[1] + 262)
+        time.sleep(0.3)
+        xdotool("mousedown", 1)
+        for i in range(1, 7):
+            xdotool("mousemove", box[0] + 30 + 10 * i, box[1] + 262)
+            time.sleep(0.15)
+        xdotool("mouseup", 1)
+        xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)  # no tooltip over the picture
+        lit = shot_when(lambda s: diff(wide, s, right) > 1, "a drag on the light's x changes the light")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot5.png", log), "F2 after the light's drag")
+        moved = json.load(open(os.path.join(OUT, f"{NAME}_shot5.json")))["lights"][0]["position"]
+        check(moved[0] > light[0] + 0.1 and moved[1:] == light[1:], f"the drag moved the light along x ({light} -> {moved})")
+        xdotool("mousemove", box[0] + 18, box[1] + 239, "click", 1)
+        xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)
+        dark = shot_when(lambda s: brightness(s, right) < brightness(lit, right) / 4, "exposure -10 darkens the picture")
+        write_png(os.path.join(OUT, "window_view.png"), [a + b for a, b in zip(lit, dark)])
+        check(brightness(dark, right) < brightness(lit, right) / 4,
+              f"exposure -10 darkens the picture ({brightness(lit, right):.0f} -> {brightness(dark, right):.0f})")
+        key(box, "F2")
+        check(wait_for(f"{NAME}_shot6.png", log), "F2 after the exposure slider")
+        exposed = json.load(open(os.path.join(OUT, f"{NAME}_shot6.json")))
+        check(exposed["parameters"]["exposure"] == -10, f"the exposure slider set -10 ({exposed['parameters']['exposure']})")
+
         xdotool("windowsize", wid, 400, 240)
         check(wait_for("resized: the target is now 400x240", log), "a resize re-creates the target at 400x240")
         key(box, "F2")
-        check(wait_for(f"{NAME}_shot4.png", log), "F2 after the resize")
-        resized = json.load(open(os.path.join(OUT, f"{NAME}_shot4.json")))
+        check(wait_for(f"{NAME}_shot7.png", log), "F2 after the resize")
+        resized = json.load(open(os.path.join(OUT, f"{NAME}_shot7.json")))
         check((resized["width"], resized["height"]) == (400, 240), "the report says 400x240 after the resize")
 
-    key(box, "Escape")
+    if PREVIEW:
+        def press_and_move(seconds, step=4):
+            """A left drag that goes on for `seconds`; returns the distinct pictures seen."""
+            x0, y0 = box[0] + W * 3 // 4, box[1] + H * 3 // 4
+            xdotool("mousemove", x0, y0)
+            time.sleep(0.3)
+            xdotool("mousedown", 1)
+            seen, end, i = set(), time.time() + seconds, 0
+            while time.time() < end:
+                i += 1
+                xdotool("mousemove", x0 - step * (i % 40), y0)
+                with open(os.path.join(FBDIR, "Xvfb_screen0"), "rb") as f:
+                    seen.add(hash(f.read()))
+                time.sleep(0.05)
+            return len(seen)
+        pictures = press_and_move(3.0)  # full frames (0.6 s) would show at most 5
+        xdotool("mouseup", 1)
+        check(wait_for("slow frames: 1/", log), "slow frames: a smaller launch while the view moves")
+        check(pictures >= 8, f"the window shows many pictures during a 3 s drag ({pictures})")
+        key(box, "F2")  # taken from the first full frame
+        check(wait_for(f"{NAME}_shot1.png", log, 30), "F2 after the drag")
+        shot = read_png_rgb(os.path.join(OUT, f"{NAME}_shot1.png"))
+        settled = shot_when(lambda s: diff(shot, s) < 1, "at rest the window shows full frames again")
+        check(diff(shot, settled) < 1, f"at rest the window shows full frames again ({diff(shot, settled):.2f})")
+        press_and_move(1.0)
+        xdotool("key", "Escape")  # during the drag: its frames are the small ones
+        xdotool("mouseup", 1)
+    else:
+        key(box, "Escape")
     try:
         code = chapter.wait(timeout=10)
     except subprocess.TimeoutExpired:
         chapter.kill()
         code = None
     check(code == 0, f"Esc ends the process with exit 0 (got {code}; --validation fails on any message)")
+    if PREVIEW and code == 0:  # the run's PNG: a full frame of the last view
+        report = json.load(open(os.path.join(OUT, "window.json")))
+        scene = json.load(open(report["scene"]))
+        scene["camera"] = report["camera"]
+        with open(os.path.join(OUT, "last_view_scene.json"), "w") as f:  # its files: from bin/assets
+            json.dump(scene, f)
+        subprocess.run([EXE, "--headless", "--width", str(W), "--height", str(H), "--frames", "1", "--scene",
+                        "last_view_scene.json", "--output", "last_view.png"], cwd=OUT, check=True,
+                       capture_output=True)
+        last = read_png_rgb(os.path.join(OUT, "window.png"))
+        again = read_png_rgb(os.path.join(OUT, "last_view.png"))
+        check(diff(last, again) < 1, f"Esc during a drag writes a full frame ({diff(last, again):.2f} from a headless one)")
 finally:
     if chapter.poll() is None:
         chapter.kill()

@@ -48,7 +48,7 @@ GpuMaterial hitMaterial() {
 // [end]
 
 void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
-    imageStore(target, ivec2(pixel), vec4(color, 1.0));
+    imageStore(target, ivec2(pixel), vec4(color * push.exposure, 1.0));  // --exposure: 1 unless asked
     rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;
 }
 
