@@ -105,6 +105,16 @@ class DocsCheck(unittest.TestCase):
         (self.root / "docs" / "03_c.md").write_text("# 03 · Renamed\n")
         self.assertEqual(docs(self.root, "--check").returncode, 1)  # the next page's title changed
 
+    def test_a_block_without_its_end_is_an_error_and_writes_nothing(self):
+        body = ("<!-- snippet: a.rgen#inner -->\n\nProse that --write must not swallow.\n\n"
+                "<!-- snippet: a.rgen#outer -->\n<!-- end -->\n")
+        self.page(body)
+        for mode in ("--write", "--check"):
+            r = docs(self.root, mode)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("a.rgen#inner has no <!-- end --> before the next block", r.stderr)
+        self.assertEqual((self.root / "docs" / "p.md").read_text(), body)
+
     def test_missing_region_is_an_error(self):
         self.page("<!-- snippet: a.rgen#nothere -->\n<!-- end -->\n")
         r = docs(self.root, "--check")

@@ -28,6 +28,7 @@ import textwrap
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BLOCK = re.compile(r"(<!-- (snippet|diff|footer): ([^>]*?) -->\n)(.*?)(<!-- end -->)", re.S)
+MARKER = re.compile(r"<!-- (snippet|diff|footer): ")  # inside a block: the block before lacks its end
 CHAPTER = re.compile(r"^(\d\d)_\w+$")
 OPEN = re.compile(r"^\s*(?://|#)\s*\[region ([\w.-]+)\]\s*$")
 CLOSE = re.compile(r"^\s*(?://|#)\s*\[end\]\s*$")
@@ -180,6 +181,9 @@ def run(root, mode):
     for page in sorted((root / "docs").rglob("*.md")):
         text = page.read_text()
         def fill(m):
+            if MARKER.search(m.group(4)):  # --write would replace the page up to the next block's end
+                raise DocsError(f"{page.relative_to(root)}: {m.group(2)} {m.group(3).strip()} has no "
+                                "<!-- end --> before the next block")
             want = render(root, m.group(2), m.group(3).strip())
             if m.group(4) != want:
                 stale.append(f"{page.relative_to(root)}: {m.group(2)} {m.group(3).strip()}")
