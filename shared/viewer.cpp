@@ -324,6 +324,11 @@ void Viewer::viewControls() {
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("vertical field of view (the scene's camera fov_y_deg; R resets)");
     parameterControls("view");
+    // Lights from chapter 05 on, whose chapters declare --exposure in this
+    // section too; chapter 04 shows normals, which no light changes.
+    bool shading = std::any_of(params_.all().begin(), params_.all().end(),
+                               [](const Param& p) { return p.section == "view"; });
+    if (!shading) return;
     const Camera& c = camera_.camera();
     float speed = float(0.005 * glm::length(c.lookAt - c.position));  // per pixel dragged
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
