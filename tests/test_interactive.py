@@ -320,6 +320,8 @@ try:
                     if red(q) and not red(p)}
 
         right = (W * 3 // 4, 0, W, H)  # beside the overlay (310 px wide)
+        away = (box[0] + W + 20, box[1] + H + 20)  # the pointer: its shape changes with the overlay's
+        xdotool("mousemove", *away)
         save(original.replace(call, call[:-1] + ".bgr;"))  # the sky's red and blue swapped
         check(reloads(1), "saving an edited shader reloads it")
         shot_when(lambda s: changed(s, right), "the edited shader changes the picture")
@@ -343,6 +345,7 @@ try:
         still = sum(red(fixed[y][x]) for x, y in error_text)
         check(still < len(error_text) // 20, f"the error is gone from the overlay ({still} red pixels left)")
         key(box, "F5")
+        xdotool("mousemove", *away)
         check(reloads(3), "F5 compiles and reloads the shaders")
         key(box, "h")  # the error showed the overlay: hide it again
         shot_when(restored, "H hides the overlay again")
