@@ -68,6 +68,12 @@ float worldRadius(const Object& o) {
 
 static_assert(uint32_t(Glass::Diamond) == GLASS_DIAMOND && uint32_t(Glass::BK7) == GLASS_BK7);
 
+std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
+    std::vector<gpu::GpuLight> lights;
+    for (const auto& l : scene.lights) lights.push_back({v4(l.position, 1), v4(l.intensity)});
+    return lights;
+}
+
 gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std::vector<uint32_t>& firstTexel) {
     glm::uvec4 texture(0);
     if (m.texture >= 0) {  // chapter 12: where its texels are, its size, and how it wraps and filters
@@ -181,8 +187,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     }
     std::vector<gpu::GpuMaterial> materials;
     for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m, scene, rt.firstTexel));
-    std::vector<gpu::GpuLight> lights;
-    for (const auto& l : scene.lights) lights.push_back({v4(l.position, 1), v4(l.intensity)});
+    std::vector<gpu::GpuLight> lights = toGpuLights(scene);
     rt.objects = storage(gpu, deletion, objects);
     rt.materials = storage(gpu, deletion, materials);
     rt.lights = storage(gpu, deletion, lights);

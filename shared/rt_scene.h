@@ -39,6 +39,8 @@ struct RtScene {
 // A material as the shaders read it (host_device.h); `firstTexel`: where
 // each of the scene's textures starts in the texel buffer.
 gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene, const std::vector<uint32_t>& firstTexel);
+// The scene's point lights as the shaders read them (the viewer uploads them again when one moves).
+std::vector<gpu::GpuLight> toGpuLights(const Scene& scene);
 
 // How the scene goes into acceleration structures (chapter 03; the command
 // line's --layout, --file-order and --sphere-mesh).

@@ -99,9 +99,7 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_), sizeof m, &m);
     }
     if (lightsDirty_) {  // all of them: a few 32-byte records
-        std::vector<gpu::GpuLight> lights;
-        for (const PointLight& l : scene_.lights)
-            lights.push_back({glm::vec4(glm::vec3(l.position), 1), glm::vec4(glm::vec3(l.intensity), 0)});
+        std::vector<gpu::GpuLight> lights = toGpuLights(scene_);
         vkCmdUpdateBuffer(cmd, rt_.lights.handle, 0, lights.size() * sizeof lights[0], lights.data());
     }
     if (upload) afterUpload(cmd);
