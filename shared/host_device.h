@@ -200,12 +200,12 @@ struct RtPush {
     uint samplesPerHit;  // rough reflection rays per hit (chapter 11)
     uint pattern;        // sample pattern (chapter 11)
     uint fresnelMode;    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter 09)
-    uint accumulated;    // frames already averaged into the target (chapter 11)
+    uint accumulated;    // frames already averaged into the target (chapter 04's antialiasing, 11's rough reflections)
     float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
     float wavelength;    // chapter 13: > 0, every path at this wavelength (nm); 0: one drawn per path
     uvec2 treeQueue;     // the tree queue's device address, low and high 32 bits (chapter 10)
     float exposure;      // 2^EV, what the written radiance is scaled by (--exposure; chapter 05 on)
-    uint pad0;
+    uint antialias;      // 1: each frame's camera rays pass a new point of the pixel (--antialias, chapter 04)
 };
 RG_SIZE(RtPush, 48);
 

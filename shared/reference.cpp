@@ -5,6 +5,7 @@
 #include "display.h"
 #include "progress.h"
 #include "rt_scene.h"
+#include "sampling.h"
 
 #include <algorithm>
 #include <atomic>
@@ -337,15 +338,15 @@ Material ReferenceRenderer::hitMaterial(const ReferenceHit& hit) const {
 }
 
 void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
-                                  glm::dvec3& direction) const {
+                                  glm::dvec3& direction, glm::dvec2 offset) const {
     // A camera basis, not matrices: forward, right, up from look-at and up.
     const Camera& c = scene_.camera;
     glm::dvec3 forward = glm::normalize(c.lookAt - c.position);
     glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
     glm::dvec3 up = glm::cross(right, forward);
     double tanHalf = std::tan(glm::radians(c.fovYDeg) / 2), aspect = double(width) / height;
-    double sx = ((x + 0.5) / width * 2 - 1) * tanHalf * aspect;
-    double sy = (1 - (y + 0.5) / height * 2) * tanHalf;  // the top row looks up
+    double sx = ((x + offset.x) / width * 2 - 1) * tanHalf * aspect;
+    double sy = (1 - (y + offset.y) / height * 2) * tanHalf;  // the top row looks up
     origin = c.position;
     direction = glm::normalize(forward + sx * right + sy * up);
 }
@@ -620,17 +621,38 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings, const 
     return kept * color;
 }
 
+// [region reference_footprint]
 glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
                                     uint32_t height, double* stdError) const {
+    if (!settings.antialias) return shadeRay(settings, x, y, width, height, glm::dvec2(0.5), -1, stdError);
+    // --antialias: the mean over the points of the pixel the GPU's frames
+    // sampled (sampling.glsl's, compiled as C++), one camera ray each.
+    uint32_t frames = std::max(1u, settings.frames);
+    glm::dvec3 sum(0);
+    double errorSq = 0;
+    for (uint32_t k = 0; k < frames; ++k) {
+        glm::dvec2 offset(shader::pixelJitter(shader::uvec2(x, y), k));
+        double e = 0;
+        sum += shadeRay(settings, x, y, width, height, offset, int(k), &e);
+        errorSq += e * e;
+    }
+    if (stdError) *stdError = std::sqrt(errorSq) / frames;  // of a mean of independent estimates
+    return sum / double(frames);
+}
+// [end]
+
+glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width,
+                                       uint32_t height, glm::dvec2 offset, int frame, double* stdError) const {
     glm::dvec3 origin, direction;
-    cameraRay(x, y, width, height, origin, direction);
+    cameraRay(x, y, width, height, origin, direction, offset);
     if (stdError) *stdError = 0;
     if (settings.stage == ReferenceStage::Media) {  // chapter 13: the eye may be inside a medium
         MediumStack eye;
         if (scene_.cameraMedium >= 0) eye.materials.push_back(uint32_t(scene_.cameraMedium));
-        std::vector<double> wavelengths;  // the GPU's, frame after frame
+        std::vector<double> wavelengths;  // the GPU's, frame after frame (one frame's: that frame's)
         for (uint32_t k = 0; k < std::max(1u, settings.frames); ++k)
-            wavelengths.push_back(referencePathWavelength(x, y, settings.firstFrame, k));
+            if (frame < 0 || int(k) == frame)
+                wavelengths.push_back(referencePathWavelength(x, y, settings.firstFrame, k));
         eye.wavelengths = &wavelengths;
         int passes = 0;
         return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes);
@@ -666,7 +688,8 @@ glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t 
     glm::dvec3 t1 = glm::normalize(glm::cross(helper, mirror)), t2 = glm::cross(mirror, t1);
     double cosMax = std::cos(m.roughness * kPi / 2);
     int side = std::max(1, int(std::lround(std::sqrt(double(settings.samples)))));
-    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x) ^ (settings.seed * 0xD1B54A32D192ED03ull));
+    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x) ^ (settings.seed * 0xD1B54A32D192ED03ull) ^
+                        (uint64_t(frame + 1) * 0x8CB92BA72F3D8DD7ull));  // each antialiased ray its own
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     glm::dvec3 from = secondaryOrigin(p, hit.error, n), sum(0), sumSq(0);
     for (int j = 0; j < side; ++j)

@@ -1,7 +1,9 @@
 // The CPU reference renderer: the same scene, camera and shading as the GPU
 // chapters, written again in double precision with none of the GPU's code
 // (its own camera basis, intersections and sky filter), so that comparing
-// the two finds errors in either. One ray per pixel centre.
+// the two finds errors in either. One ray per pixel centre, or with
+// --antialias the GPU's own points in the pixel (sampling.h): where to
+// sample is the input both share, not a rule under test.
 #pragma once
 #include "output.h"
 #include "scene.h"
@@ -45,6 +47,9 @@ struct ReferenceSettings {
     uint32_t frames = 1;      // the frames accumulated, one wavelength per path in each,
     uint32_t firstFrame = 0;  // from this frame on
     double exposure = 1;      // 2^EV: the image is the radiance times this (--exposure)
+    // --antialias: each pixel is the mean over the first `frames` points of
+    // its jitter sequence (the GPU's, sampling.glsl), one camera ray each.
+    bool antialias = false;
 };
 
 struct ReferenceHit {
@@ -72,12 +77,18 @@ public:
     static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv);
     // The material of a hit, its ambient and diffuse colours times hit.tint.
     Material hitMaterial(const ReferenceHit& hit) const;
+    // Through the point `offset` of pixel (x, y): (0.5, 0.5) its centre.
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
-                   glm::dvec3& direction) const;
-    // Chapter 11 also returns the standard error of its rough-reflection
-    // estimate in `stdError` (0 elsewhere).
+                   glm::dvec3& direction, glm::dvec2 offset = glm::dvec2(0.5)) const;
+    // Pixel (x, y): one ray through its centre, or with settings.antialias
+    // the mean of the GPU's frames' rays. Chapter 11 also returns the
+    // standard error of its rough-reflection estimate in `stdError` (0 elsewhere).
     glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
                      double* stdError = nullptr) const;
+    // One camera ray through `offset` of the pixel; `frame`: which of the
+    // frames' wavelengths it carries (chapter 13), -1: all of them.
+    glm::dvec3 shadeRay(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                        glm::dvec2 offset, int frame, double* stdError) const;
     // Radiance arriving along a ray (chapters 05-10), following reflections
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,

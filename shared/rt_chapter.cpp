@@ -26,6 +26,13 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
     params.integer("--sphere-mesh", settings.sphereMesh,
                    "Spheres as icospheres subdivided this often (0: analytic spheres)", 0, 7)
         .live = false;  // the acceleration structures are built once
+    enum { kAuto, kOn, kOff };  // --antialias, as chapter 04
+    int antialias = kAuto;
+    params.choice("--antialias", antialias,
+                  "Average frames of rays through new points in each pixel "
+                  "(auto: on in a window, off headless)",
+                  {"auto", "on", "off"})
+        .section = "view";  // the overlay's View and light section
     params.number("--exposure", settings.exposure, "Exposure in stops: the image is the light times 2^EV", -10, 10)
         .section = "view";  // the overlay's View section, with the camera's and the lights' controls
     auto extra = [&](CLI::App& app, Options& o) {
@@ -33,6 +40,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         params.addTo(app);
     };
     if (auto exit = parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra)) return *exit;
+    if (antialias == kAuto) antialias = opts.headless ? kOff : kOn;  // the report says which
     return runChapter(opts, [&] {
         auto loadStart = std::chrono::steady_clock::now();
         Scene scene = toCameraSpace(loadScene(opts.scene.empty() ? defaultScenePath(chapter.scene) : opts.scene));
@@ -89,16 +97,19 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
             uint32_t unchanged = viewer.update(cmd, frame);  // frames since the picture last changed
             VkExtent2D size = viewer.launchSize();  // smaller while a slow view moves
+            bool jitter = antialias != kOff;
+            viewer.averaging = jitter || settings.accumulate;
             gpu::RtPush push{
                 .frame = frame,
                 .maxDepth = uint32_t(settings.maxDepth),
                 .samplesPerHit = uint32_t(settings.samplesPerHit),
                 .pattern = uint32_t(settings.pattern),
                 .fresnelMode = uint32_t(settings.fresnelMode),
-                .accumulated = settings.accumulate ? unchanged : 0,
+                .accumulated = viewer.averaging ? unchanged : 0,
                 .epsilon = settings.epsilon,
                 .wavelength = settings.wavelength,
                 .exposure = std::exp2(settings.exposure),
+                .antialias = jitter,
             };
             last = push;
             if (canTwo)
@@ -120,7 +131,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         ReferenceSettings reference{.stage = chapter.stage, .maxDepth = settings.maxDepth,
                                     .fresnelMode = settings.fresnelMode, .samples = settings.referenceSamples,
                                     .wavelength = settings.wavelength, .frames = last.accumulated + 1,
-                                    .firstFrame = last.frame - last.accumulated, .exposure = last.exposure};
+                                    .firstFrame = last.frame - last.accumulated, .exposure = last.exposure,
+                                    .antialias = last.antialias != 0};
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},  // the last frame's launches
                                 {"parameters", params.values()}};
         if (canTwo) extra["trees_past_first_hit"] = {{"trees", lastTrees(two)}, {"pixels", rt.width * rt.height},

@@ -238,9 +238,11 @@ void Viewer::drawOverlay(uint32_t frame) {
                 frameMs > 0 ? 1000 / frameMs : 0.0, mraysPerS_);
     if (scale_ > 1)
         ImGui::Text("%ux%u at 1/%u while moving", rt_.width, rt_.height, scale_);
-    else
+    else if (averaging)
         ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height, (unsigned long long)raysPerFrame_,
                     frame - firstFrame_ + 1);
+    else
+        ImGui::Text("%ux%u, %llu rays, one frame", rt_.width, rt_.height, (unsigned long long)raysPerFrame_);
     ImGui::PushItemWidth(140);
     bool chapterParams = std::any_of(params_.all().begin(), params_.all().end(),
                                      [](const Param& p) { return p.section.empty(); });
@@ -322,10 +324,10 @@ void Viewer::viewControls() {
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("vertical field of view (the scene's camera fov_y_deg; R resets)");
     parameterControls("view");
-    // Lights from chapter 05 on, whose chapters declare --exposure in this
-    // section too; chapter 04 shows normals, which no light changes.
+    // Lights from chapter 05 on, the chapters that shade: they declare
+    // --exposure. Chapter 04 shows normals, which no light changes.
     bool shading = std::any_of(params_.all().begin(), params_.all().end(),
-                               [](const Param& p) { return p.section == "view"; });
+                               [](const Param& p) { return p.flag == "--exposure"; });
     if (!shading) return;
     const Camera& c = camera_.camera();
     float speed = float(0.005 * glm::length(c.lookAt - c.position));  // per pixel dragged
@@ -473,7 +475,7 @@ void Viewer::screenshot(uint32_t frame) {
     nlohmann::json report = makeReport(opts_, app_.gpu, loop_.times());
     report["scene"] = scene_.path;
     report["camera"] = cameraToJson(camera_.camera(), scene_.origin);
-    report["accumulated_frames"] = frame - firstFrame_;
+    report["accumulated_frames"] = averaging ? frame - firstFrame_ : 1;  // the frames in the picture
     if (selectedMaterial_ >= 0) report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
     report["parameters"] = params_.values();
     report["lights"] = nlohmann::json::array();  // as the View and light section has them

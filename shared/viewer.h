@@ -44,6 +44,10 @@ public:
     VkExtent2D launchSize() const;
     bool previewed() const { return scale_ > 1; }
 
+    // Set by the chapter each frame: its frames average while the picture
+    // rests (--antialias, chapter 11's accumulation); the overlay counts them.
+    bool averaging = false;
+
     // Shader hot reload (shader_reload.h), in a window: when a source of
     // `shaders` is saved, or on F5, and it compiles, `rebuild` makes the
     // pipeline again from the new stages, its objects in the queue it gets

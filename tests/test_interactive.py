@@ -5,7 +5,7 @@ Starts its own Xvfb (whose framebuffer file is the screenshot), runs the
 chapter with the validation layer, and moves the mouse and presses keys with
 xdotool. Standard library only.
 
-    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--preview] [--size WxH]
+    test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--preview] [--antialias] [--size WxH]
 
 Every chapter: a drag changes the picture, R brings the first one back, Esc
 ends the process with exit 0 and no validation message. --full (chapter
@@ -23,6 +23,10 @@ fix brings the first picture back; F5 compiles again.
 480x270) drags for two seconds: the window shows many pictures meanwhile
 (a smaller launch), then full frames once it rests; Esc during a drag still
 writes a full frame as the run's PNG.
+--antialias: the window as it starts, antialiasing: at rest F2's picture is
+what a headless run of the frames it reports writes, and after a drag too
+(the average started again); it differs from the pixel centres' picture.
+The other modes run with --antialias off, to compare single frames.
 """
 import json
 import os
@@ -37,8 +41,9 @@ EXE, OUT, SCENE = (os.path.abspath(a) for a in sys.argv[1:4])
 FULL = "--full" in sys.argv[4:]
 RELOAD = "--reload" in sys.argv[4:]
 PREVIEW = "--preview" in sys.argv[4:]
+ANTIALIAS = "--antialias" in sys.argv[4:]
 NAME = os.path.basename(EXE)
-W, H = (480, 270) if RELOAD or PREVIEW else (320, 180) if FULL else (160, 90)
+W, H = (560, 315) if FULL else (480, 270) if RELOAD or PREVIEW else (160, 90)
 if "--size" in sys.argv:
     W, H = map(int, sys.argv[sys.argv.index("--size") + 1].split("x"))
 BLUE_SPHERE = (203 * W // 320, 125 * H // 180)  # where the default scene's small blue sphere is
@@ -249,6 +254,8 @@ ENV = dict(os.environ, DISPLAY=display)
 ENV.pop("WAYLAND_DISPLAY", None)
 log = os.path.join(OUT, "stdout.txt")
 args = [EXE, "--validation", "--width", str(W), "--height", str(H), "--no-ui", "--output", "window.png"]
+if not ANTIALIAS:  # the checks below compare pictures: one frame's, not an average still converging
+    args += ["--antialias", "off"]
 if RELOAD:  # a copy of what the shaders read, to edit
     TREE = os.path.join(OUT, "tree")
     SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -410,7 +417,8 @@ try:
 
         # The View and light section (its header 194 px down, under the
         # parameters): the fov slider's left end is 5 degrees, a drag on the
-        # first light's x moves it, the exposure slider's left end is -10 EV.
+        # first light's x moves it (row 285: after the antialias choice and
+        # the exposure), the exposure slider's left end is -10 EV.
         def brightness(s, region):
             x0, y0, x1, y1 = region
             return sum(sum(s[y][x]) for y in range(y0, y1) for x in range(x0, x1)) / ((x1 - x0) * (y1 - y0))
@@ -426,11 +434,11 @@ try:
         light = fov["lights"][0]["position"]
         key(box, "r")  # back to 45 degrees: the light and exposure act on the whole view
         wide = shot_when(lambda s: diff(wide, s, right) < 0.5, "R brings the field of view back")
-        xdotool("mousemove", box[0] + 30, box[1] + 262)
+        xdotool("mousemove", box[0] + 30, box[1] + 285)
         time.sleep(0.3)
         xdotool("mousedown", 1)
         for i in range(1, 7):
-            xdotool("mousemove", box[0] + 30 + 10 * i, box[1] + 262)
+            xdotool("mousemove", box[0] + 30 + 10 * i, box[1] + 285)
             time.sleep(0.15)
         xdotool("mouseup", 1)
         xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)  # no tooltip over the picture
@@ -439,7 +447,7 @@ try:
         check(wait_for(f"{NAME}_shot5.png", log), "F2 after the light's drag")
         moved = json.load(open(os.path.join(OUT, f"{NAME}_shot5.json")))["lights"][0]["position"]
         check(moved[0] > light[0] + 0.1 and moved[1:] == light[1:], f"the drag moved the light along x ({light} -> {moved})")
-        xdotool("mousemove", box[0] + 18, box[1] + 239, "click", 1)
+        xdotool("mousemove", box[0] + 18, box[1] + 262, "click", 1)
         xdotool("mousemove", box[0] + W + 20, box[1] + H + 20)
         dark = shot_when(lambda s: brightness(s, right) < brightness(lit, right) / 4, "exposure -10 darkens the picture")
         write_png(os.path.join(OUT, "window_view.png"), [a + b for a, b in zip(lit, dark)])
@@ -456,6 +464,43 @@ try:
         check(wait_for(f"{NAME}_shot7.png", log), "F2 after the resize")
         resized = json.load(open(os.path.join(OUT, f"{NAME}_shot7.json")))
         check((resized["width"], resized["height"]) == (400, 240), "the report says 400x240 after the resize")
+
+    if ANTIALIAS:
+        # A window antialiases by default (--antialias auto): at rest its
+        # picture is the mean of the frames since the view last changed,
+        # which F2 reports; a headless run of that many frames writes the
+        # same picture. After a drag the average starts again, from the new
+        # view alone.
+        def rendered_again(report, tag):
+            """The headless PNG of an F2 report's camera and frames."""
+            scene = json.load(open(report["scene"]))
+            scene["camera"] = report["camera"]
+            with open(os.path.join(OUT, f"{tag}_scene.json"), "w") as f:
+                json.dump(scene, f)
+            frames = max(1, report["accumulated_frames"])
+            subprocess.run([EXE, "--headless", "--width", str(W), "--height", str(H), "--scene", f"{tag}_scene.json",
+                            "--antialias", "on", "--frames", str(frames), "--output", f"{tag}.png"], cwd=OUT,
+                           check=True, capture_output=True)
+            return read_png_rgb(os.path.join(OUT, f"{tag}.png"))
+        time.sleep(2)
+        for n, moved in ((1, False), (2, True)):
+            if moved:
+                drag(box, 40, 10)
+                time.sleep(2)
+            key(box, "F2")
+            check(wait_for(f"{NAME}_shot{n}.png", log), f"F2 ({n})")
+            report = json.load(open(os.path.join(OUT, f"{NAME}_shot{n}.json")))
+            frames = report["accumulated_frames"]
+            check(report["parameters"]["antialias"] == "on" and frames >= 4,
+                  f"at rest the window averages frames ({report['parameters']['antialias']}, {frames} frames)")
+            shot = read_png_rgb(os.path.join(OUT, f"{NAME}_shot{n}.png"))
+            again = rendered_again(report, f"again{n}")
+            check(diff(shot, again) < 0.01, f"{'after a drag, ' if moved else ''}F2's picture is a headless run's "
+                  f"of {frames} antialiased frames ({diff(shot, again):.3f})")
+        subprocess.run([EXE, "--headless", "--width", str(W), "--height", str(H), "--scene", "again2_scene.json",
+                        "--frames", "1", "--output", "centre.png"], cwd=OUT, check=True, capture_output=True)
+        edges = diff(shot, read_png_rgb(os.path.join(OUT, "centre.png")))
+        check(edges > 0.05, f"and differs from one ray through each pixel's centre, at the edges ({edges:.3f})")
 
     if PREVIEW:
         def press_and_move(seconds, step=4):

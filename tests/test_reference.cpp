@@ -7,7 +7,8 @@
 // (where total internal reflection happens), glass at grazing incidence,
 // touching glass spheres, a long glass ellipsoid, the depth limit, 1,000
 // spheres), with validation on and no NaN anywhere; chapter 12 also on the
-// mesh scenes under tests/mesh_scenes/; and its window under Xvfb.
+// mesh scenes under tests/mesh_scenes/; antialiased (--antialias); and its
+// window under Xvfb.
 #include "harness.h"
 
 #include <cctype>
@@ -22,6 +23,20 @@ TEST(Reference, DefaultSceneMatches) {
     rgtest::expectMatchesReference(RG_THIS_EXE, "", RG_THIS_NAME "_default");
 }
 #endif
+
+// --antialias: 8 frames of rays through new points in each pixel, against
+// the reference's mean over the same points. (Chapter 11: a scene without a
+// rough surface, so that only the pixel is integrated.)
+TEST(Antialias, MatchesTheReferenceOverTheSamePointsOfEachPixel) {
+#ifdef RG_NOISY_DEFAULT_SCENE
+    std::string scene = RG_SOURCE_DIR "/tests/scenes/far_1e4.json";
+#else
+    std::string scene;
+#endif
+    nlohmann::json report = rgtest::expectMatchesReference(RG_THIS_EXE, scene, RG_THIS_NAME "_antialias",
+                                                           {"--antialias", "on", "--frames", "8"});
+    EXPECT_EQ(report["parameters"].value("antialias", ""), "on");
+}
 
 class HardCases : public ::testing::TestWithParam<std::string> {};
 

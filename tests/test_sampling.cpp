@@ -71,6 +71,22 @@ TEST(Sobol, SameIndexSamePoint) {
         EXPECT_EQ(shader::samplePoint(PATTERN_SOBOL, i, 25, 77u), shader::samplePoint(PATTERN_SOBOL, i, 25, 77u));
 }
 
+// Chapter 04's antialiasing: after 2^k frames a pixel's jitter points are a
+// net (one in each of 2^k equal boxes of the pixel, for every shape of box),
+// in [0,1)^2; each pixel has its own points, and none of chapter 11's lobes
+// (seeded by frame numbers) shares them.
+TEST(PixelJitter, EveryPowerOfTwoOfFramesFillsThePixelEvenly) {
+    for (glm::uvec2 pixel : {glm::uvec2(0, 0), glm::uvec2(1, 0), glm::uvec2(159, 89), glm::uvec2(1919, 1079)})
+        for (int k = 0; k <= 10; ++k) {
+            std::vector<glm::vec2> points;
+            for (std::uint32_t i = 0; i < (1u << k); ++i) points.push_back(shader::pixelJitter(pixel, i));
+            EXPECT_TRUE(isNet(points, k)) << pixel.x << "," << pixel.y << ": 2^" << k << " frames";
+        }
+    EXPECT_NE(shader::pixelJitter({3u, 4u}, 0u), shader::pixelJitter({4u, 3u}, 0u));
+    for (std::uint32_t frame : {0u, 1u, 100u})
+        EXPECT_NE(shader::pixelJitter({3u, 4u}, 0u), shader::sobolPoint(0u, shader::pixelSeed({3u, 4u}, frame)));
+}
+
 TEST(Lobe, FiniteAndInsideTheConeAtTheEdgesOfTheSquare) {
     const float almostOne = 1.0f - 1.0f / 16777216.0f;  // the largest value toUnit returns
     const std::vector<glm::vec3> axes = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0},

@@ -2,6 +2,7 @@
 """Draws the docs' explanatory figures as SVG into docs/images/:
 
   03_split_order.svg  the boxes lavapipe's midpoint builder makes of a list in file order and in median-split order
+  04_pixel_jitter.svg where in a pixel chapter 04's antialiased frames sample (sampling.glsl's points, ported)
   04_sbt_layout.svg   the shader binding table of chapters 06-11 and how a ray picks its record
   10_ray_tree.svg     chapter 10's ray tree through a glass sphere (n = 1.517), traced here exactly
   10_inside_reach.svg chapter 10's tMax for a ray inside a sphere, and the boxes it skips
@@ -373,6 +374,52 @@ def lobe():
     return s.svg()
 
 
+# --- chapter 04: where in the pixel each frame's ray passes ----------------------------------------
+JITTER_STREAM = 0xA511E9B3  # sampling.glsl's
+
+
+def pixel_jitter_point(pixel, k):
+    """Frame k's point of `pixel`: sampling.glsl's pixelJitter."""
+    x, y = pixel
+    seed = pcg_hash((x + pcg_hash((y + pcg_hash(JITTER_STREAM)) & M32)) & M32)
+    return sobol_point(k, seed)
+
+
+def pixel_jitter():
+    pixel, size = (100, 40), 190.0
+    s = Svg(760, 330)
+    s.text(20, 24, "Chapter 04's antialiasing: where frame k's ray passes through one pixel (scrambled Sobol points)",
+           weight="bold")
+    edge = lambda x: 0.3 + 0.35 * x  # a silhouette: below it (larger y) the sphere, above it the sky
+    covered = 1 - (edge(0) + edge(1)) / 2
+    for panel, (count, cells) in enumerate(((4, 2), (16, 4), (64, 8))):
+        x0, y0 = 30 + panel * 250.0, 50.0
+        pts = [pixel_jitter_point(pixel, k) for k in range(count)]
+        assert len({(int(u * cells), int(v * cells)) for u, v in pts}) == count, "one point per cell"
+        if panel == 2:
+            s.add(f"<polygon points='{x0:.1f},{y0 + size * edge(0):.1f} {x0 + size:.1f},{y0 + size * edge(1):.1f} "
+                  f"{x0 + size:.1f},{y0 + size:.1f} {x0:.1f},{y0 + size:.1f}' fill='#f3d9b1'/>")
+        for k in range(1, cells):
+            s.line(x0 + size * k / cells, y0, x0 + size * k / cells, y0 + size, color="#ccc", width=1)
+            s.line(x0, y0 + size * k / cells, x0 + size, y0 + size * k / cells, color="#ccc", width=1)
+        s.rect(x0, y0, size, size, fill="none", stroke="#333", width=1.5)
+        s.circle(x0 + size / 2, y0 + size / 2, 3, fill="#c0392b", stroke="#c0392b", width=1)
+        for u, v in pts:
+            s.circle(x0 + size * u, y0 + size * v, 3.2, fill="#2b6f99", stroke="#2b6f99", width=1)
+        s.text(x0 + size / 2, y0 + size + 22, f"{count} frames: one point in each of {count} cells",
+               anchor="middle", size=12, color="#444")
+        if panel == 2:
+            s.line(x0, y0 + size * edge(0), x0 + size, y0 + size * edge(1), color="#a04000", width=2)
+            inside = sum(1 for u, v in pts if v > edge(u))
+            s.text(x0 + size / 2, y0 + size + 40, f"sphere (shaded) covers {covered:.3f} of the pixel;",
+                   anchor="middle", size=12, color="#444")
+            s.text(x0 + size / 2, y0 + size + 56, f"{inside} of 64 points fall on it: {inside / 64:.3f}",
+                   anchor="middle", size=12, color="#444")
+    s.text(30, 322, "Red: the centre, the one point every frame samples without --antialias: the pixel is all "
+           "sphere or all sky.", size=12, color="#444")
+    return s.svg()
+
+
 def srgb(linear):
     c = min(max(linear, 0.0), 1.0)
     return 12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
@@ -420,7 +467,7 @@ def absorption():
     return s.svg()
 
 
-FIGURES = {"03_split_order.svg": split_order, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree,
+FIGURES = {"03_split_order.svg": split_order, "04_pixel_jitter.svg": pixel_jitter, "04_sbt_layout.svg": sbt_layout, "10_ray_tree.svg": ray_tree,
            "10_inside_reach.svg": inside_reach, "11_lobe.svg": lobe, "13_absorption.svg": absorption}
 
 

@@ -6,7 +6,10 @@ applies RayGlass's one display transform (shared/display.h: clamp to [0, 1],
 then sRGB) and writes an 8-bit PNG, with a gap between the panels. Python's
 standard library only.
 
-    tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS]
+    tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N]
+
+--scale N draws each pixel as an N x N square, so that single pixels (a
+staircase at an edge, chapter 04's antialiasing) can be seen.
 """
 import math
 import struct
@@ -47,16 +50,28 @@ def write_png(path, width, height, rows):
 
 
 def main(argv):
-    gap = 4
+    options = {"--gap": 4, "--scale": 1}
     args = list(argv)
-    if "--gap" in args:
-        i = args.index("--gap")
-        gap = int(args[i + 1])
-        del args[i:i + 2]
+    for name in options:
+        if name in args:
+            i = args.index(name)
+            try:
+                options[name] = int(args[i + 1])
+            except (IndexError, ValueError):
+                options[name] = -1
+            if options[name] < (0 if name == "--gap" else 1):
+                print(f"montage.py: {name} needs a whole number (at least {0 if name == '--gap' else 1})",
+                      file=sys.stderr)
+                return 2
+            del args[i:i + 2]
+    gap, scale = options["--gap"], options["--scale"]
     if len(args) < 2:
-        print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
+        print("usage: tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N]", file=sys.stderr)
         return 2
     out, inputs = args[0], [read_pfm(p) for p in args[1:]]
+    if scale > 1:  # each pixel an N x N square
+        inputs = [(w * scale, h * scale, [tuple(v for x in range(w) for v in row[3 * x:3 * x + 3] * scale)
+                                          for row in image for _ in range(scale)]) for w, h, image in inputs]
     height = max(h for _, h, _ in inputs)
     width = sum(w for w, _, _ in inputs) + gap * (len(inputs) - 1)
     rows = [[255] * (3 * width) for _ in range(height)]  # white gaps

@@ -6,8 +6,9 @@
 #   tools/perf-report.sh --assemble-only      (plots and page from existing data)
 # The scaling study is tools/scaling.py (--out docs/perf/<device>), run apart:
 # it takes minutes on lavapipe; this script plots and includes its results.
-# So are chapter 12's, tools/meshes_study.py, and chapter 13's,
-# tools/real_glass_study.py (the same --out).
+# So are chapter 04's antialiasing, tools/antialias_study.py, chapter 12's,
+# tools/meshes_study.py, and chapter 13's, tools/real_glass_study.py (the
+# same --out).
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -59,14 +60,15 @@ section() {
       if [ -f "$dir/scaling.md" ]; then  # tools/scaling.py
         section "$dir" "$slug" scaling scaling "GPU ms per frame and structure memory against the number of spheres"
       fi
-    elif [ -f "$dir/meshes.json" ]; then  # a device measured for chapters 12-13 only
+    elif [ -f "$dir/meshes.json" ]; then  # a device measured for the chapter studies only
       echo "### $(jq -r '.device' "$dir/meshes.json")"
       echo
       echo "Driver: $(jq -r '.driver' "$dir/meshes.json"). Only the chapter studies below" \
-           "(\`tools/meshes_study.py\` for 12, \`tools/real_glass_study.py\` for 13)."
+           "(\`tools/antialias_study.py\` for 04, \`tools/meshes_study.py\` for 12," \
+           "\`tools/real_glass_study.py\` for 13)."
       echo
     fi
-    for study in meshes real_glass; do  # tools/meshes_study.py, tools/real_glass_study.py
+    for study in antialias meshes real_glass; do  # tools/antialias_study.py, meshes_study.py, real_glass_study.py
       if [ -f "$dir/$study.md" ]; then
         cat "$dir/$study.md"
         echo

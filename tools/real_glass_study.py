@@ -21,12 +21,11 @@ machine too.
 import json
 import math
 import os
-import struct
 import subprocess
 import sys
 import tempfile
 
-from study import run_study
+from study import read_pfm, run_study, srgb
 
 
 def run(exe, scene, size, frames, extra, out=None, reference=False):
@@ -49,22 +48,6 @@ def fastest(args, exe, scene, extra):
         if best is None or r["gpu_ms"]["median"] < best["gpu_ms"]["median"]:
             best = r
     return best
-
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        channels = 3 if kind == b"PF" else 1
-        values = struct.unpack(("<" if scale < 0 else ">") + "f" * (width * height * channels),
-                               f.read(4 * width * height * channels))
-    return width, height, channels, values
-
-
-def srgb(v):
-    v = min(1.0, max(0.0, v))
-    return 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
 
 
 def error(test, reference):

@@ -1,11 +1,13 @@
-"""What chapter studies share (tools/meshes_study.py, tools/real_glass_study.py):
-their command line and their files. A study measures into OUT/NAME.json and
+"""What chapter studies share (tools/meshes_study.py, tools/real_glass_study.py,
+tools/antialias_study.py): their command line, their files, and reading
+the chapters' PFM images. A study measures into OUT/NAME.json and
 writes its tables to OUT/NAME.md; --tables-only rewrites the tables from
 the JSON. Standard library only, so the studies run on the GPU machine too.
 """
 import argparse
 import json
 import os
+import struct
 import sys
 
 
@@ -45,3 +47,20 @@ def run_study(name, doc, measure, tables, add_options=None, check=None):
     with open(out, "w") as f:
         f.write(tables(data))
     print(f"wrote {out}")
+
+
+def read_pfm(path):
+    """(width, height, channels, values) of a PFM image, bottom row first."""
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        channels = 3 if kind == b"PF" else 1
+        values = struct.unpack(("<" if scale < 0 else ">") + "f" * (width * height * channels),
+                               f.read(4 * width * height * channels))
+    return width, height, channels, values
+
+
+def srgb(v):
+    v = min(1.0, max(0.0, v))
+    return 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055

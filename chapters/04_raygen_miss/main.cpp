@@ -17,10 +17,27 @@
 
 int main(int argc, char** argv) {
     rg::Options opts;
-    auto extra = [](CLI::App& app, rg::Options& o) { rg::addSceneOptions(app, o, true); };
+    // [region antialias_option]
+    // Antialiasing (this chapter's last section): on in a window, where the
+    // frames average while the view rests; headless only when asked, so that
+    // a plain run traces each pixel's centre, as the chapters before did.
+    rg::Params params;
+    enum { kAuto, kOn, kOff };
+    int antialias = kAuto;
+    params.choice("--antialias", antialias,
+                  "Average frames of rays through new points in each pixel "
+                  "(auto: on in a window, off headless)",
+                  {"auto", "on", "off"})
+        .section = "view";  // the overlay's View and light section
+    // [end]
+    auto extra = [&](CLI::App& app, rg::Options& o) {
+        rg::addSceneOptions(app, o, true);
+        params.addTo(app);
+    };
     if (auto exit = rg::parseCommandLine(argc, argv, "04_raygen_miss",
                                          "RayGlass chapter 04: ray generation, miss, the SBT", opts, extra))
         return *exit;
+    if (antialias == kAuto) antialias = opts.headless ? kOff : kOn;  // the report says which
     return rg::runChapter(opts, [&] {
         // Moved so the camera is at the origin, in double, before any float is
         // made: precision anywhere in the world (chapter 06's page).
@@ -53,18 +70,30 @@ int main(int argc, char** argv) {
         // [region viewer]
         // In a window: a camera to fly, an overlay with timings, a target that
         // follows the window's size (shared/viewer.h). Headless: nothing.
-        rg::Viewer viewer(app, opts, scene, rt, target, loop);
+        rg::Viewer viewer(app, opts, scene, rt, target, loop, params);
         // Saving a shader (or F5) compiles it again: then the pipeline from it.
         viewer.reloadShaders(shaders, [&](const rg::RtShaders& compiled, rg::DeletionQueue& deletion) {
             pipeline = rg::createRtPipeline(app.gpu, deletion, rt.descriptors.layout, sizeof(rg::gpu::RtPush),
                                             compiled);
         });
+        rg::gpu::RtPush last{};  // the last frame's: what the reference checks
         rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
-            viewer.update(cmd, frame);  // records the camera's upload when it moved
-            rg::gpu::RtPush push{.frame = frame};
+            // Records the camera's upload when it moved; returns how many
+            // frames ago the picture last changed (headless: `frame`).
+            uint32_t unchanged = viewer.update(cmd, frame);
+            bool jitter = antialias != kOff;  // the overlay may choose "auto": on in a window
+            viewer.averaging = jitter;
+            rg::gpu::RtPush push{.frame = frame,
+                                 .accumulated = jitter ? unchanged : 0,  // 0: the picture starts again
+                                 .antialias = jitter};
             rg::recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push), rt.width, rt.height);
+            last = push;
         });
         // [end]
-        rg::finishRtRun(app, opts, scene, rt, target, times, {.stage = rg::ReferenceStage::Normals});
+        // The reference integrates over the same points of each pixel.
+        rg::ReferenceSettings reference{.stage = rg::ReferenceStage::Normals,
+                                        .frames = last.accumulated + 1,
+                                        .antialias = last.antialias != 0};
+        rg::finishRtRun(app, opts, scene, rt, target, times, reference, {{"parameters", params.values()}});
     });
 }

@@ -1,6 +1,8 @@
-// The camera ray of thesis 2.2.2, through the pixel's centre.
+// The camera ray of thesis 2.2.2, through a point of the pixel: its centre,
+// or with --antialias a new point each frame (chapter 04's antialiasing).
 #ifndef CAMERA_GLSL
 #define CAMERA_GLSL
+#include "sampling.glsl"
 // [region eye_tmin]
 // Camera rays ignore hits closer to the eye than this: 0, unless the eye
 // lies exactly on a surface; then a little more than that surface's
@@ -12,12 +14,24 @@ float eyeTmin() { return camera.eye.x; }
 // [end]
 
 // [region camera_ray]
-void cameraRay(uvec2 pixel, uvec2 size, out vec3 origin, out vec3 direction) {
-    vec2 pixelCenter = vec2(pixel) + 0.5;                     // not the corner
-    vec2 ndc = pixelCenter / vec2(size) * 2.0 - 1.0;          // -1..1; y = -1 is the top row
+// `offset`: where in the pixel the ray passes, (0.5, 0.5) at its centre.
+void cameraRay(uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin, out vec3 direction) {
+    vec2 ndc = (vec2(pixel) + offset) / vec2(size) * 2.0 - 1.0;  // -1..1; y = -1: the top row
     origin = (camera.viewInverse * vec4(0, 0, 0, 1)).xyz;
     vec4 target = camera.projInverse * vec4(ndc.x, ndc.y, 1, 1);  // Vulkan clip space: y down
     direction = (camera.viewInverse * vec4(normalize(target.xyz), 0)).xyz;
+}
+// [end]
+
+// [region pixel_offset]
+// Antialiasing: a pixel is a small square, and its colour the mean over it.
+// Frame k of an accumulation (push.accumulated) samples point k of the
+// pixel's own scrambled Sobol sequence (sampling.glsl): after 2^m frames one
+// point in each of 2^m equal parts of the square. The seed is the pixel's
+// alone, so a window that rested for N frames shows what a headless run of
+// N frames writes. Without --antialias: the centre.
+vec2 pixelOffset(uvec2 pixel) {
+    return push.antialias != 0u ? pixelJitter(pixel, push.accumulated) : vec2(0.5);
 }
 // [end]
 #endif

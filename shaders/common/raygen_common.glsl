@@ -1,6 +1,6 @@
-// What every ray generation shader from chapter 05 on shares: its outputs,
-// its payload, the primary trace (as chapter 04 writes it out), and the
-// normal on the side the ray came from.
+// What every ray generation shader from chapter 05 on shares: its outputs
+// (chapter 04's running mean included), its payload, the primary trace (as
+// chapter 04 writes it out), and the normal on the side the ray came from.
 #ifndef RAYGEN_COMMON_GLSL
 #define RAYGEN_COMMON_GLSL
 layout(binding = RT_BINDING_TARGET, rgba32f) uniform image2D target;
@@ -47,10 +47,18 @@ GpuMaterial hitMaterial() {
 }
 // [end]
 
+// [region write_pixel]
+// Chapter 04's running mean (--antialias, and chapter 11's rough samples),
+// of the radiance: the target holds it exposed.
 void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
+    if (push.accumulated > 0u) {
+        vec3 mean = imageLoad(target, ivec2(pixel)).rgb / push.exposure;
+        color = mix(mean, color, 1.0 / float(push.accumulated + 1u));
+    }
     imageStore(target, ivec2(pixel), vec4(color * push.exposure, 1.0));  // --exposure: 1 unless asked
     rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;
 }
+// [end]
 
 void writePixel(vec3 color, uint rays) { writePixelAt(gl_LaunchIDEXT.xy, color, rays); }
 #endif

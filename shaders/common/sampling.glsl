@@ -1,6 +1,7 @@
-// Sample points for rough reflections (chapter 11), deterministic: the same
-// pixel, frame and sample index always give the same point, so a run can be
-// repeated exactly. Plain GLSL that also compiles as C++ (tests/test_sampling.cpp).
+// Sample points for rough reflections (chapter 11) and inside pixels
+// (chapter 04's antialiasing), deterministic: the same pixel, frame and
+// sample index always give the same point, so a run can be repeated
+// exactly. Plain GLSL that also compiles as C++ (shared/sampling.h).
 #ifndef SAMPLING_GLSL
 #define SAMPLING_GLSL
 #define PATTERN_UNIFORM 0u     // independent random points
@@ -51,6 +52,13 @@ vec2 sobolPoint(uint index, uint seed) {
     uint y = owenScramble(sobolSecond(index), pcgHash(seed + 1u));
     return vec2(toUnit(x), toUnit(y));
 }
+// [end]
+
+// [region pixel_jitter]
+// Chapter 04's antialiasing: point k in [0,1)^2 of the pixel's own sequence
+// (a stream of seeds no frame number reaches, so no chapter 11 lobe shares it).
+#define JITTER_STREAM 0xA511E9B3u
+vec2 pixelJitter(uvec2 pixel, uint k) { return sobolPoint(k, pixelSeed(pixel, JITTER_STREAM)); }
 // [end]
 
 // [region patterns]
