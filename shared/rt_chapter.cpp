@@ -75,6 +75,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                           {}},
         };
         // [end]
+        // A run that never averages frames gets a shader without the jitter
+        // and the running mean (rt_bindings.glsl's kAverages): a window may
+        // switch them on at any time, headless runs only from the start.
+        shaders.raygenAverages = app.window || antialias == kOn || settings.accumulate;
         RtPipeline pipeline = createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush),
                                                shaders);
         // Chapter 10: two launches, where the driver can size a launch from a

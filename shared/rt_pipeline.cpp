@@ -34,10 +34,12 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
                           .intersectionShader = VK_SHADER_UNUSED_KHR});
     };
     // Specialization: the driver compiles the ray generation shader with
-    // constant 0 fixed, so branches on it cost nothing (and no registers).
-    VkSpecializationMapEntry entry{.constantID = 0, .offset = 0, .size = sizeof(uint32_t)};
-    VkSpecializationInfo specialization{.mapEntryCount = 1, .pMapEntries = &entry, .dataSize = sizeof(uint32_t),
-                                        .pData = &shaders.raygenConstant};
+    // constants 0 and 1 fixed, so branches on them cost nothing (and no registers).
+    uint32_t constants[2] = {shaders.raygenConstant, shaders.raygenAverages};
+    VkSpecializationMapEntry entries[2] = {{.constantID = 0, .offset = 0, .size = sizeof(uint32_t)},
+                                           {.constantID = 1, .offset = sizeof(uint32_t), .size = sizeof(uint32_t)}};
+    VkSpecializationInfo specialization{.mapEntryCount = 2, .pMapEntries = entries, .dataSize = sizeof constants,
+                                        .pData = constants};
     general(addStage(VK_SHADER_STAGE_RAYGEN_BIT_KHR, shaders.raygen));
     stages.back().pSpecializationInfo = &specialization;
     for (const auto& miss : shaders.miss) general(addStage(VK_SHADER_STAGE_MISS_BIT_KHR, miss));

@@ -19,6 +19,9 @@ struct HitGroup {
 struct RtShaders {
     std::string raygen;
     uint32_t raygenConstant = 0;  // the ray generation shader's specialization constant 0 (chapter 10: its launch)
+    // Constant 1, kAverages (rt_bindings.glsl): 0 for a run that never
+    // averages frames, whose shader then holds no jitter and no running mean.
+    uint32_t raygenAverages = 1;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     std::string spirvDir;  // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder

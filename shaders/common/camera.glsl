@@ -31,7 +31,7 @@ void cameraRay(uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin, out vec3 d
 // alone, so a window that rested for N frames shows what a headless run of
 // N frames writes. Without --antialias: the centre.
 vec2 pixelOffset(uvec2 pixel) {
-    return push.antialias != 0u ? pixelJitter(pixel, push.accumulated) : vec2(0.5);
+    return kAverages && push.antialias != 0u ? pixelJitter(pixel, push.accumulated) : vec2(0.5);
 }
 // [end]
 #endif

@@ -51,7 +51,7 @@ GpuMaterial hitMaterial() {
 // Chapter 04's running mean (--antialias, and chapter 11's rough samples),
 // of the radiance: the target holds it exposed.
 void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
-    if (push.accumulated > 0u) {
+    if (kAverages && push.accumulated > 0u) {  // kAverages: rt_bindings.glsl
         vec3 mean = imageLoad(target, ivec2(pixel)).rgb / push.exposure;
         color = mix(mean, color, 1.0 / float(push.accumulated + 1u));
     }

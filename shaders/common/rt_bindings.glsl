@@ -13,6 +13,13 @@ layout(binding = RT_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMa
 layout(binding = RT_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
 layout(binding = RT_BINDING_SKY, std430) readonly buffer Sky { vec4 skyTexels[]; };
 layout(push_constant) uniform PushBlock { RtPush push; };
+// [region averages]
+// Specialization constant 1 (rt_pipeline.h's raygenAverages): false for a
+// run that never averages frames (headless, --antialias off, chapter 11's
+// --no-accumulate). The jitter and the running mean are then compiled out;
+// merely being there, untaken, they cost 2-3 % of a frame on an H200.
+layout(constant_id = 1) const bool kAverages = true;
+// [end]
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 3.0e38;
