@@ -103,7 +103,8 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         vkCmdUpdateBuffer(cmd, rt_.lights.handle, 0, lights.size() * sizeof lights[0], lights.data());
     }
     if (upload) afterUpload(cmd);
-    if (upload || changed_) lastChange_ = Clock::now();
+    // The first frame's upload is no change: a slow start shows no preview.
+    if ((upload || changed_) && !frameScales_.empty()) lastChange_ = Clock::now();
     uint32_t scale = previewScale(secondsSince(lastChange_) < 0.25 &&
                                   !glfwWindowShouldClose(app_.window->handle()));  // the last frame is full
     changed_ = changed_ || scale != scale_;  // a new size: a new average
@@ -154,43 +155,42 @@ void Viewer::handleKeys(uint32_t frame) {
 }
 
 void Viewer::handleMouse() {
-    GLFWwindow* w = app_.window->handle();
     bool overlayHasMouse = overlayVisible_ && overlay_->wantsMouse();
     double scroll = app_.window->takeScroll();
     if (scroll != 0 && !overlayHasMouse) {
         camera_.zoom(scroll);
         cameraDirty_ = true;
     }
-    // Presses and releases as events: a quick click can begin and end
-    // between two frames. A press on the overlay is the overlay's.
-    // ImGui's own answer is the last frame's: a pointer that has just come
-    // onto the overlay and clicked is not yet its. So the overlay's box too.
+    // Presses, moves and releases as events, in order: after a slow frame
+    // (a second on lavapipe) a whole click or drag is in one poll.
+    // A press on the overlay is the overlay's. ImGui's own answer is the
+    // last frame's: a pointer that has just come onto the overlay and
+    // clicked is not yet its. So the overlay's box too.
     auto onOverlay = [&](double x, double y) {
         const double* b = overlayBox_;
         return overlayHasMouse || (overlayVisible_ && x >= b[0] && y >= b[1] && x < b[0] + b[2] && y < b[1] + b[3]);
     };
-    for (const Window::ButtonEvent& e : app_.window->takeButtons()) {
-        if (e.pressed && dragButton_ < 0 && !onOverlay(e.x, e.y)) {
+    using Event = Window::PointerEvent;
+    for (const Event& e : app_.window->takePointer()) {
+        if (e.kind == Event::Press && dragButton_ < 0 && !onOverlay(e.x, e.y)) {
             dragButton_ = e.button;
             pressX_ = lastX_ = e.x;
             pressY_ = lastY_ = e.y;
             dragMoved_ = false;
-        } else if (!e.pressed && e.button == dragButton_) {
+        } else if (e.kind == Event::Move && dragButton_ >= 0) {
+            dragMoved_ = dragMoved_ || std::abs(e.x - pressX_) + std::abs(e.y - pressY_) > 3;
+            if (dragMoved_) {
+                if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT) camera_.orbit(e.x - lastX_, e.y - lastY_);
+                else camera_.pan(e.x - lastX_, e.y - lastY_, app_.window->extent.height);
+                cameraDirty_ = true;
+            }
+            lastX_ = e.x;
+            lastY_ = e.y;
+        } else if (e.kind == Event::Release && e.button == dragButton_) {
             if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);  // a click, not a drag
             dragButton_ = -1;
         }
     }
-    if (dragButton_ < 0) return;
-    double x = 0, y = 0;
-    glfwGetCursorPos(w, &x, &y);
-    dragMoved_ = dragMoved_ || std::abs(x - pressX_) + std::abs(y - pressY_) > 3;
-    if (dragMoved_ && (x != lastX_ || y != lastY_)) {
-        if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT) camera_.orbit(x - lastX_, y - lastY_);
-        else camera_.pan(x - lastX_, y - lastY_, app_.window->extent.height);
-        cameraDirty_ = true;
-    }
-    lastX_ = x;
-    lastY_ = y;
 }
 
 void Viewer::handleFlying(double seconds) {

@@ -47,12 +47,15 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
     glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
         self->cursor_[0] = x, self->cursor_[1] = y, self->cursorKnown_ = true;
+        if (self->buttonsHeld_ > 0) self->pointer_.push_back({PointerEvent::Move, -1, x, y});
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
         double x = self->cursor_[0], y = self->cursor_[1];
         if (!self->cursorKnown_) glfwGetCursorPos(w, &x, &y);  // no motion yet
-        self->buttons_.push_back({button, action == GLFW_PRESS, x, y});
+        bool press = action == GLFW_PRESS;
+        self->buttonsHeld_ = std::max(0, self->buttonsHeld_ + (press ? 1 : -1));
+        self->pointer_.push_back({press ? PointerEvent::Press : PointerEvent::Release, button, x, y});
     });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += y;

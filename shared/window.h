@@ -39,14 +39,15 @@ public:
         int mods;  // GLFW_MOD_*
     };
     std::vector<KeyPress> takeKeys() { return std::exchange(keys_, {}); }
-    // Mouse button presses and releases since the last call, oldest first,
-    // with the cursor's position then (a click may start and end in one poll).
-    struct ButtonEvent {
-        int button;  // GLFW_MOUSE_BUTTON_*
-        bool pressed;
+    // Mouse button presses and releases since the last call, and the moves
+    // while a button is held, oldest first, with the cursor's position then:
+    // on a slow frame a whole click or drag can start and end in one poll.
+    struct PointerEvent {
+        enum Kind { Press, Release, Move } kind;
+        int button;   // GLFW_MOUSE_BUTTON_* (Press, Release)
         double x, y;  // window coordinates
     };
-    std::vector<ButtonEvent> takeButtons() { return std::exchange(buttons_, {}); }
+    std::vector<PointerEvent> takePointer() { return std::exchange(pointer_, {}); }
     // Scroll wheel steps since the last call (up: positive).
     double takeScroll() { return std::exchange(scroll_, 0.0); }
     GLFWwindow* handle() const { return window_; }
@@ -63,9 +64,10 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     bool resized_ = false;
     std::vector<KeyPress> keys_;
-    std::vector<ButtonEvent> buttons_;
+    std::vector<PointerEvent> pointer_;
     double cursor_[2] = {0, 0};  // from the last motion event
     bool cursorKnown_ = false;
+    int buttonsHeld_ = 0;  // moves are queued only while a button is down
     double scroll_ = 0;
     std::string title_;
 };
