@@ -18,7 +18,8 @@ namespace {
 // image): make the buffer, then the structure on it. Its address is what a
 // TLAS instance (or, for the TLAS, the shader's descriptor) refers to.
 AccelerationStructure createAccelerationStructure(const Gpu& gpu, DeletionQueue& deletion,
-                                                  VkAccelerationStructureTypeKHR type, VkDeviceSize size) {
+                                                  VkAccelerationStructureTypeKHR type,
+                                                  VkDeviceSize size) {
     AccelerationStructure as;
     as.buffer = createBuffer(gpu, deletion, size,
                              VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR |
@@ -33,7 +34,8 @@ AccelerationStructure createAccelerationStructure(const Gpu& gpu, DeletionQueue&
     VK_CHECK(vkCreateAccelerationStructureKHR(gpu.device, &info, nullptr, &as.handle));
     VkDevice device = gpu.device;
     VkAccelerationStructureKHR handle = as.handle;
-    deletion.push([device, handle] { vkDestroyAccelerationStructureKHR(device, handle, nullptr); });
+    deletion.push(
+        [device, handle] { vkDestroyAccelerationStructureKHR(device, handle, nullptr); });
     VkAccelerationStructureDeviceAddressInfoKHR address{
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR,
         .accelerationStructure = as.handle,
@@ -48,15 +50,18 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 }
 
 // A barrier between acceleration structure builds/copies and what follows.
-void accelBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+void accelBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStage,
+                  VkAccessFlags dstAccess) {
     VkMemoryBarrier barrier{
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
         .dstAccessMask = dstAccess,
     };
     vkCmdPipelineBarrier(cmd,
-                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,  // after the build
-                         dstStage,                                                // before its users
+                         // after the build
+                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                         // before its users
+                         dstStage,
                          0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
@@ -65,9 +70,10 @@ void accelBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStage, VkAccessFl
 // its compacted size, copies it into a structure of exactly that size and
 // frees the original. Scenes are static at the BLAS level, so the smaller
 // copy is all that is kept.
-AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion,
-                                         const VkAccelerationStructureGeometryKHR& geometry, uint32_t primitiveCount,
-                                         BlasStats& stats) {
+AccelerationStructure buildCompactedBlas(
+    const Gpu& gpu, DeletionQueue& deletion,
+    const VkAccelerationStructureGeometryKHR& geometry, uint32_t primitiveCount,
+    BlasStats& stats) {
     VkAccelerationStructureBuildGeometryInfoKHR build{
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
         .type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
@@ -77,16 +83,21 @@ AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion
         .geometryCount = 1,
         .pGeometries = &geometry,
     };
-    VkAccelerationStructureBuildSizesInfoKHR sizes{.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-    vkGetAccelerationStructureBuildSizesKHR(gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build,
-                                            &primitiveCount, &sizes);
+    VkAccelerationStructureBuildSizesInfoKHR sizes{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    vkGetAccelerationStructureBuildSizesKHR(
+        gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build,
+        &primitiveCount, &sizes);
 
     DeletionQueue temporary;  // the uncompacted BLAS and the scratch memory
-    AccelerationStructure full = createAccelerationStructure(gpu, temporary, build.type, sizes.accelerationStructureSize);
-    VkDeviceSize scratchAlign = gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
-    Buffer scratch = createBuffer(gpu, temporary, sizes.buildScratchSize + scratchAlign,
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                  VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    AccelerationStructure full = createAccelerationStructure(
+        gpu, temporary, build.type, sizes.accelerationStructureSize);
+    VkDeviceSize scratchAlign =
+        gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
+    Buffer scratch = createBuffer(
+        gpu, temporary, sizes.buildScratchSize + scratchAlign,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     build.dstAccelerationStructure = full.handle;
     build.scratchData.deviceAddress = alignUp(scratch.address, scratchAlign);
 
@@ -111,14 +122,17 @@ AccelerationStructure buildCompactedBlas(const Gpu& gpu, DeletionQueue& deletion
         // The compacted size is known only once the build has finished.
         accelBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                      VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR);
-        vkCmdWriteAccelerationStructuresPropertiesKHR(cmd, 1, &full.handle,
-                                                      VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, query, 0);
+        vkCmdWriteAccelerationStructuresPropertiesKHR(
+            cmd, 1, &full.handle, VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR,
+            query, 0);
     });
     VkDeviceSize compactSize = 0;
-    VK_CHECK(vkGetQueryPoolResults(gpu.device, query, 0, 1, sizeof(compactSize), &compactSize, sizeof(compactSize),
+    VK_CHECK(vkGetQueryPoolResults(gpu.device, query, 0, 1, sizeof(compactSize),
+                                   &compactSize, sizeof(compactSize),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
 
-    AccelerationStructure compact = createAccelerationStructure(gpu, deletion, build.type, compactSize);
+    AccelerationStructure compact =
+        createAccelerationStructure(gpu, deletion, build.type, compactSize);
     submitOnce(gpu, [&](VkCommandBuffer cmd) {
         timer.begin(cmd, 1);
         VkCopyAccelerationStructureInfoKHR copy{
@@ -151,12 +165,14 @@ static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
             .data = {.deviceAddress = boxes.address},
             .stride = sizeof(VkAabbPositionsKHR),
         }},
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
+        // no any-hit shader: the first hit is the hit
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
     };
 }
 
 // Indexed triangles: float x, y, z vertices one after another, uint32 indices.
-static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices, uint32_t maxVertex,
+static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices,
+                                                           uint32_t maxVertex,
                                                            const Buffer& indices) {
     return {
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
@@ -170,23 +186,27 @@ static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertice
             .indexType = VK_INDEX_TYPE_UINT32,
             .indexData = {.deviceAddress = indices.address},
         }},
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,  // no any-hit shader: the first hit is the hit
+        // no any-hit shader: the first hit is the hit
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
     };
 }
 
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel, const Scene* scene,
-                           bool fileOrder) {
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel,
+                           const Scene* scene, bool fileOrder) {
     UnitShapes shapes;
     DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
-    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    const VkBufferUsageFlags input =
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
 
     // The unit quad: y = 0, facing +y, two triangles.
     const float vertices[] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
     const uint32_t indices[] = {0, 2, 1, 0, 3, 2};
-    Buffer vertexBuffer = createDeviceBuffer(gpu, inputs, vertices, sizeof(vertices), input);
+    Buffer vertexBuffer =
+        createDeviceBuffer(gpu, inputs, vertices, sizeof(vertices), input);
     Buffer indexBuffer = createDeviceBuffer(gpu, inputs, indices, sizeof(indices), input);
-    VkAccelerationStructureGeometryKHR triangles = triangleGeometry(vertexBuffer, 3, indexBuffer);
+    VkAccelerationStructureGeometryKHR triangles =
+        triangleGeometry(vertexBuffer, 3, indexBuffer);
     shapes.stats.push_back({.name = "unit_quad", .geometry = "triangles"});
     shapes.quad = buildCompactedBlas(gpu, deletion, triangles, 2, shapes.stats.back());
 
@@ -204,34 +224,45 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
         for (const auto& mesh : scene->meshes) {
             shapes.stats.push_back({.name = mesh->name, .geometry = "triangles"});
             if (fileOrder) {
-                shapes.meshes.push_back(buildMeshBlas(gpu, deletion, *mesh, shapes.stats.back()));
+                shapes.meshes.push_back(
+                    buildMeshBlas(gpu, deletion, *mesh, shapes.stats.back()));
             } else {
                 Mesh ordered = *mesh;
                 medianSplitTriangles(ordered);
-                shapes.meshes.push_back(buildMeshBlas(gpu, deletion, ordered, shapes.stats.back()));
+                shapes.meshes.push_back(
+                    buildMeshBlas(gpu, deletion, ordered, shapes.stats.back()));
             }
         }
     if (sphereMeshLevel > 0) {  // the tessellated alternative (performance.md)
-        shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel), .geometry = "triangles"});
+        shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel),
+                                .geometry = "triangles"});
         shapes.sphereMesh = int(shapes.meshes.size());
-        shapes.meshes.push_back(buildMeshBlas(gpu, deletion, icosphere(sphereMeshLevel), shapes.stats.back()));
+        shapes.meshes.push_back(buildMeshBlas(gpu, deletion, icosphere(sphereMeshLevel),
+                                              shapes.stats.back()));
     }
     return shapes;
 }
 
 // [region mesh_blas]
-MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh, BlasStats& stats) {
+MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh,
+                       BlasStats& stats) {
     // Read by the build (BUILD_INPUT) and by the closest-hit shader through
     // its device address: one buffer serves both.
-    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    const VkBufferUsageFlags usage =
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     MeshBlas m{.triangles = uint32_t(mesh.indices.size() / 3)};
-    m.vertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(), mesh.vertices.size() * sizeof(glm::vec3), usage);
-    m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), usage);
+    m.vertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(),
+                                    mesh.vertices.size() * sizeof(glm::vec3), usage);
+    m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(),
+                                   mesh.indices.size() * sizeof(uint32_t), usage);
     if (!mesh.normals.empty())
-        m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3), usage);
+        m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(),
+                                       mesh.normals.size() * sizeof(glm::vec3), usage);
     if (!mesh.texcoords.empty())
-        m.texcoords = createDeviceBuffer(gpu, deletion, mesh.texcoords.data(), mesh.texcoords.size() * sizeof(glm::vec2), usage);
+        m.texcoords =
+            createDeviceBuffer(gpu, deletion, mesh.texcoords.data(),
+                               mesh.texcoords.size() * sizeof(glm::vec2), usage);
     // Opaque, as every geometry here: no any-hit shader runs, the closest
     // triangle is the hit. maxVertex: the highest index a triangle may use.
     VkAccelerationStructureGeometryKHR triangles =
@@ -263,22 +294,29 @@ static void splitAtMedian(Centred* first, Centred* last) {
     size_t n = size_t(last - first);
     if (n <= 2) return;  // one node with two leaves: nothing to choose
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (Centred* c = first; c != last; ++c) lo = glm::min(lo, c->centre), hi = glm::max(hi, c->centre);
+    for (Centred* c = first; c != last; ++c)
+        lo = glm::min(lo, c->centre), hi = glm::max(hi, c->centre);
     glm::dvec3 extent = hi - lo;
-    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+               : extent.y >= extent.z                       ? 1
+                                                            : 2;
     Centred* middle = first + (n + 1) / 2;  // lavapipe's left half holds ceil(n / 2)
     std::nth_element(first, middle, last, [axis](const Centred& a, const Centred& b) {
         double ca = a.centre[axis], cb = b.centre[axis];
-        return ca != cb ? ca < cb : a.object < b.object;  // ties by index: the same order on every machine
+        // ties by index: the same order on every machine
+        return ca != cb ? ca < cb : a.object < b.object;
     });
     splitAtMedian(first, middle);
     splitAtMedian(middle, last);
 }
 
-std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t> objects) {
-    std::vector<Centred> list;  // the centres beside the indices: a million objects' splits stay in cache
+std::vector<uint32_t> medianSplitOrder(const Scene& scene,
+                                       std::vector<uint32_t> objects) {
+    // the centres beside the indices: a million objects' splits stay in cache
+    std::vector<Centred> list;
     list.reserve(objects.size());
-    for (uint32_t i : objects) list.push_back({glm::dvec3(scene.objects[i].transform[3]), i});
+    for (uint32_t i : objects)
+        list.push_back({glm::dvec3(scene.objects[i].transform[3]), i});
     splitAtMedian(list.data(), list.data() + list.size());
     for (size_t k = 0; k < list.size(); ++k) objects[k] = list[k].object;
     return objects;
@@ -290,13 +328,15 @@ void medianSplitTriangles(Mesh& mesh) {
     std::vector<Centred> list(mesh.indices.size() / 3);
     for (uint32_t t = 0; t < list.size(); ++t) {
         glm::dvec3 sum(0);
-        for (int c = 0; c < 3; ++c) sum += glm::dvec3(mesh.vertices[mesh.indices[3 * t + c]]);
+        for (int c = 0; c < 3; ++c)
+            sum += glm::dvec3(mesh.vertices[mesh.indices[3 * t + c]]);
         list[t] = {sum / 3.0, t};
     }
     splitAtMedian(list.data(), list.data() + list.size());
     std::vector<uint32_t> indices(mesh.indices.size());
     for (size_t k = 0; k < list.size(); ++k)
-        for (int c = 0; c < 3; ++c) indices[3 * k + c] = mesh.indices[3 * list[k].object + c];
+        for (int c = 0; c < 3; ++c)
+            indices[3 * k + c] = mesh.indices[3 * list[k].object + c];
     mesh.indices = std::move(indices);
 }
 
@@ -304,13 +344,15 @@ bool inSphereGroup(const Object& o) {
     if (o.type != ShapeType::Sphere || o.moving || o.hidden) return false;
     glm::dvec3 x(o.transform[0]), y(o.transform[1]), z(o.transform[2]);
     double r2 = glm::dot(x, x), tolerance = 1e-12 * r2;
-    return std::abs(glm::dot(y, y) - r2) <= tolerance && std::abs(glm::dot(z, z) - r2) <= tolerance &&
-           std::abs(glm::dot(x, y)) <= tolerance && std::abs(glm::dot(y, z)) <= tolerance &&
-           std::abs(glm::dot(z, x)) <= tolerance;
+    return std::abs(glm::dot(y, y) - r2) <= tolerance &&
+           std::abs(glm::dot(z, z) - r2) <= tolerance &&
+           std::abs(glm::dot(x, y)) <= tolerance &&
+           std::abs(glm::dot(y, z)) <= tolerance && std::abs(glm::dot(z, x)) <= tolerance;
 }
 
 glm::dvec4 groupSphere(const Object& o) {
-    return glm::dvec4(glm::dvec3(o.transform[3]), glm::length(glm::dvec3(o.transform[0])));
+    return glm::dvec4(glm::dvec3(o.transform[3]),
+                      glm::length(glm::dvec3(o.transform[0])));
 }
 
 // [region sphere_group]
@@ -318,21 +360,25 @@ SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scen
                              const std::vector<uint32_t>& objects, uint32_t firstObject) {
     SphereGroup group{.objects = objects, .firstObject = firstObject};
     std::vector<VkAabbPositionsKHR> boxes;
-    for (uint32_t i : objects) {  // in the order given: lavapipe's tree is this list (chapter 03)
+    // in the order given: lavapipe's tree is this list (chapter 03)
+    for (uint32_t i : objects) {
         // Rounded outwards to float, so that no part of the sphere is outside its box.
         auto down = [](double v) { return std::nextafter(float(v), -INFINITY); };
         auto up = [](double v) { return std::nextafter(float(v), INFINITY); };
         glm::dvec4 sphere = groupSphere(scene.objects[i]);
         glm::dvec3 lo = glm::dvec3(sphere) - sphere.w, hi = glm::dvec3(sphere) + sphere.w;
-        boxes.push_back({down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)});
+        boxes.push_back(
+            {down(lo.x), down(lo.y), down(lo.z), up(hi.x), up(hi.y), up(hi.z)});
     }
     group.stats = {.name = "sphere_group", .geometry = "aabbs"};
     if (boxes.empty()) return group;
     DeletionQueue inputs;  // the boxes are not needed after the build
-    Buffer boxBuffer = createDeviceBuffer(gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
-                                          VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                                              VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
-    group.blas = buildCompactedBlas(gpu, deletion, aabbGeometry(boxBuffer), uint32_t(boxes.size()), group.stats);
+    Buffer boxBuffer = createDeviceBuffer(
+        gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    group.blas = buildCompactedBlas(gpu, deletion, aabbGeometry(boxBuffer),
+                                    uint32_t(boxes.size()), group.stats);
     return group;
 }
 // [end]
@@ -344,31 +390,42 @@ std::vector<uint32_t> fileOrder(const Scene& scene) {
 }
 
 // [region make_instances]
-std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& objects,
-                                                              const SphereGroup* group) {
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(
+    const Scene& scene, const UnitShapes& shapes, const std::vector<uint32_t>& objects,
+    const SphereGroup* group) {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     if (group && !group->objects.empty())
         instances.push_back({
-            .transform = toVkTransform(glm::dmat4(1.0)),  // its boxes are where the spheres are
+            // its boxes are where the spheres are
+            .transform = toVkTransform(glm::dmat4(1.0)),
             .instanceCustomIndex = group->firstObject,
             .mask = 0xFFu,
-            .instanceShaderBindingTableRecordOffset = 1u,  // the analytic sphere's hit group
+            // the analytic sphere's hit group
+            .instanceShaderBindingTableRecordOffset = 1u,
             .flags = 0,
             .accelerationStructureReference = group->blas.address,
         });
     for (uint32_t i : objects) {
         const Object& o = scene.objects[i];
         bool sphere = o.type == ShapeType::Sphere;
-        int mesh = o.type == ShapeType::Mesh ? int(o.mesh) : sphere ? shapes.sphereMesh : -1;  // --sphere-mesh
+        // --sphere-mesh
+        int mesh = o.type == ShapeType::Mesh ? int(o.mesh)
+                   : sphere                  ? shapes.sphereMesh
+                                             : -1;
         instances.push_back({
             .transform = toVkTransform(o.transform),
             .instanceCustomIndex = uint32_t(i),  // gl_InstanceCustomIndexEXT: the object
-            .mask = o.hidden ? 0x00u : 0xFFu,    // every ray sees every instance, but a hidden copy
-            .instanceShaderBindingTableRecordOffset = mesh >= 0 ? 2u : sphere ? 1u : 0u,  // hit group
-            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,  // both sides of every triangle
+            // every ray sees every instance, but a hidden copy
+            .mask = o.hidden ? 0x00u : 0xFFu,
+            // hit group
+            .instanceShaderBindingTableRecordOffset = mesh >= 0 ? 2u
+                                                      : sphere  ? 1u
+                                                                : 0u,
+            // both sides of every triangle
+            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,
             .accelerationStructureReference = mesh >= 0 ? shapes.meshes[mesh].blas.address
-                                              : sphere ? shapes.sphere.address : shapes.quad.address,
+                                              : sphere  ? shapes.sphere.address
+                                                        : shapes.quad.address,
         });
     }
     return instances;
@@ -390,14 +447,16 @@ VkAccelerationStructureGeometryKHR instanceGeometry(const Buffer& instances) {
 }  // namespace
 
 // [region build_tlas]
-Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAccelerationStructureInstanceKHR>& instances) {
+Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion,
+               const std::vector<VkAccelerationStructureInstanceKHR>& instances) {
     Tlas tlas;
     tlas.count = uint32_t(instances.size());
     VkDeviceSize bytes = instances.size() * sizeof(VkAccelerationStructureInstanceKHR);
-    tlas.instances = createDeviceBuffer(gpu, deletion, instances.data(), bytes,
-                                        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-                                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    tlas.instances = createDeviceBuffer(
+        gpu, deletion, instances.data(), bytes,
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     VkAccelerationStructureGeometryKHR geometry = instanceGeometry(tlas.instances);
     VkAccelerationStructureBuildGeometryInfoKHR build{
@@ -411,16 +470,22 @@ Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAcce
         .geometryCount = 1,
         .pGeometries = &geometry,
     };
-    VkAccelerationStructureBuildSizesInfoKHR sizes{.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-    vkGetAccelerationStructureBuildSizesKHR(gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build,
-                                            &tlas.count, &sizes);
+    VkAccelerationStructureBuildSizesInfoKHR sizes{
+        .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    vkGetAccelerationStructureBuildSizesKHR(
+        gpu.device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build, &tlas.count,
+        &sizes);
     tlas.buildBytes = sizes.accelerationStructureSize;
     tlas.updateScratchBytes = sizes.updateScratchSize;
-    tlas.as = createAccelerationStructure(gpu, deletion, build.type, sizes.accelerationStructureSize);
-    VkDeviceSize scratchAlign = gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
-    tlas.scratch = createBuffer(gpu, deletion, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + scratchAlign,
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    tlas.as = createAccelerationStructure(gpu, deletion, build.type,
+                                          sizes.accelerationStructureSize);
+    VkDeviceSize scratchAlign =
+        gpu.physical.accelerationStructure.minAccelerationStructureScratchOffsetAlignment;
+    tlas.scratch = createBuffer(
+        gpu, deletion,
+        std::max(sizes.buildScratchSize, sizes.updateScratchSize) + scratchAlign,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     build.dstAccelerationStructure = tlas.as.handle;
     tlas.scratchAddress = alignUp(tlas.scratch.address, scratchAlign);
     build.scratchData.deviceAddress = tlas.scratchAddress;
@@ -439,38 +504,48 @@ Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAcce
 
 void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
                       const std::vector<VkAccelerationStructureInstanceKHR>& instances,
-                      const std::vector<uint32_t>& changed, VkPipelineStageFlags consumerStage) {
-    if (instances.size() != tlas.count) throw std::runtime_error("recordTlasUpdate: needs the TLAS's own instances");
+                      const std::vector<uint32_t>& changed,
+                      VkPipelineStageFlags consumerStage) {
+    if (instances.size() != tlas.count)
+        throw std::runtime_error("recordTlasUpdate: needs the TLAS's own instances");
     // The previous frame's rays and refit must be done with the instances
     // and the TLAS before this frame overwrites them.
     VkMemoryBarrier readsDone{
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
-        .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
+        .dstAccessMask =
+            VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR,
     };
-    vkCmdPipelineBarrier(cmd,
-                         consumerStage | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,  // earlier users
-                         VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                         0, 1, &readsDone, 0, nullptr, 0, nullptr);
+    vkCmdPipelineBarrier(
+        cmd,
+        // earlier users
+        consumerStage | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+        VK_PIPELINE_STAGE_TRANSFER_BIT |
+            VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+        0, 1, &readsDone, 0, nullptr, 0, nullptr);
     // The changed instances travel inside the command buffer, 64 bytes each:
     // no host-visible memory that a frame in flight still reads, and a
     // million static instances are not sent again.
     for (uint32_t k : changed)
-        vkCmdUpdateBuffer(cmd, tlas.instances.handle, k * sizeof(instances[0]), sizeof(instances[0]), &instances[k]);
+        vkCmdUpdateBuffer(cmd, tlas.instances.handle, k * sizeof(instances[0]),
+                          sizeof(instances[0]), &instances[k]);
     VkMemoryBarrier written{
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_SHADER_READ_BIT,
+        .dstAccessMask =
+            VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_SHADER_READ_BIT,
     };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                         0, 1, &written, 0, nullptr, 0, nullptr);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1,
+                         &written, 0, nullptr, 0, nullptr);
 
     VkAccelerationStructureGeometryKHR geometry = instanceGeometry(tlas.instances);
     VkAccelerationStructureBuildGeometryInfoKHR update{
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR,
         .type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
         .flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
-                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR,  // must match the build's flags
+                 // must match the build's flags
+                 VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR,
         .mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR,
         .srcAccelerationStructure = tlas.as.handle,  // updated in place: src == dst
         .dstAccelerationStructure = tlas.as.handle,

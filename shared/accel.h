@@ -31,13 +31,15 @@ struct BlasStats {
 // by their device addresses (barycentrics, smooth normals, texture coordinates).
 struct MeshBlas {
     AccelerationStructure blas;
-    Buffer vertices, normals, indices;  // normals: empty when the mesh has none (flat faces)
+    // normals: empty when the mesh has none (flat faces)
+    Buffer vertices, normals, indices;
     Buffer texcoords;                   // empty when the mesh has none (untextured)
     uint32_t triangles = 0;
 };
 // Builds `mesh` as given: its triangles in the order they come (chapter 03:
 // on lavapipe that order is the tree; medianSplitTriangles first).
-MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh, BlasStats& stats);
+MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh,
+                       BlasStats& stats);
 
 // The two unit shapes every scene object instances (scene.h): the quad
 // [-1,1] x {0} x [-1,1] as two triangles, and the box [-1,1]^3 that holds the
@@ -45,15 +47,18 @@ MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh
 // Chapter 12 adds the scene's meshes, each once.
 struct UnitShapes {
     AccelerationStructure quad, sphere;
-    std::vector<MeshBlas> meshes;  // Scene::meshes in order, then the icosphere of sphereMeshLevel > 0
-    int sphereMesh = -1;           // which of `meshes` replaces the analytic sphere (-1: none)
+    // Scene::meshes in order, then the icosphere of sphereMeshLevel > 0
+    std::vector<MeshBlas> meshes;
+    // which of `meshes` replaces the analytic sphere (-1: none)
+    int sphereMesh = -1;
     std::vector<BlasStats> stats;
 };
 // sphereMeshLevel > 0 also builds an icosphere of that subdivision level,
 // which makeInstances then uses for every sphere instead of the analytic one.
 // `scene` (chapter 12): its meshes too, in median-split order unless `fileOrder`.
-UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel = 0,
-                           const Scene* scene = nullptr, bool fileOrder = false);
+UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion,
+                           int sphereMeshLevel = 0, const Scene* scene = nullptr,
+                           bool fileOrder = false);
 
 // The order in which objects go into a structure (thesis 2.2.1). A builder
 // may take the order it is given as the tree: lavapipe's splits the list at
@@ -64,7 +69,9 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
 // recurses into each half. `objects` are indices into scene.objects.
 std::vector<uint32_t> medianSplitOrder(const Scene& scene, std::vector<uint32_t> objects);
 std::vector<uint32_t> fileOrder(const Scene& scene);  // every object: 0, 1, 2, ...
-inline std::vector<uint32_t> medianSplitOrder(const Scene& scene) { return medianSplitOrder(scene, fileOrder(scene)); }
+inline std::vector<uint32_t> medianSplitOrder(const Scene& scene) {
+    return medianSplitOrder(scene, fileOrder(scene));
+}
 // Chapter 12: a mesh's triangles in the same order, by their centroids.
 void medianSplitTriangles(Mesh& mesh);
 
@@ -79,7 +86,8 @@ void medianSplitTriangles(Mesh& mesh);
 struct SphereGroup {
     AccelerationStructure blas;
     std::vector<uint32_t> objects;  // box k holds scene object objects[k]
-    uint32_t firstObject = 0;       // its custom index: where its entries start in the GPU's object array
+    // its custom index: where its entries start in the GPU's object array
+    uint32_t firstObject = 0;
     BlasStats stats;
 };
 // A sphere the group can hold: static, visible, and round: its transform
@@ -92,9 +100,9 @@ SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scen
                              const std::vector<uint32_t>& objects, uint32_t firstObject);
 
 // The group's one instance (if it has spheres) first, then one per object.
-std::vector<VkAccelerationStructureInstanceKHR> makeInstances(const Scene& scene, const UnitShapes& shapes,
-                                                              const std::vector<uint32_t>& objects,
-                                                              const SphereGroup* group = nullptr);
+std::vector<VkAccelerationStructureInstanceKHR> makeInstances(
+    const Scene& scene, const UnitShapes& shapes, const std::vector<uint32_t>& objects,
+    const SphereGroup* group = nullptr);
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m);
 
 struct Tlas {
@@ -107,13 +115,15 @@ struct Tlas {
     double buildMs = 0;  // GPU time of the first build
 };
 // Builds with ALLOW_UPDATE so that moving objects can be refitted in place.
-Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion, const std::vector<VkAccelerationStructureInstanceKHR>& instances);
+Tlas buildTlas(const Gpu& gpu, DeletionQueue& deletion,
+               const std::vector<VkAccelerationStructureInstanceKHR>& instances);
 // Records the new data of the instances listed in `changed` (same
 // instances, only their transforms changed) and an in-place update (refit)
 // of the TLAS, ordered after the rays of earlier frames and before
 // `consumerStage` of this one.
 void recordTlasUpdate(VkCommandBuffer cmd, const Tlas& tlas,
                       const std::vector<VkAccelerationStructureInstanceKHR>& instances,
-                      const std::vector<uint32_t>& changed, VkPipelineStageFlags consumerStage);
+                      const std::vector<uint32_t>& changed,
+                      VkPipelineStageFlags consumerStage);
 
 }  // namespace rg

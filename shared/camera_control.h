@@ -21,7 +21,8 @@ public:
     // Moves eye and look-at point by (right, up, forward) in scene units.
     void fly(const glm::dvec3& rightUpForward);
     void reset() { camera_ = start_; }
-    void setFovY(double degrees) { camera_.fovYDeg = degrees; }  // the overlay's fov slider
+    // the overlay's fov slider
+    void setFovY(double degrees) { camera_.fovYDeg = degrees; }
 
     const Camera& camera() const { return camera_; }
 

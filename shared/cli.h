@@ -27,11 +27,15 @@ struct Options {
     // From chapter 03 on:
     std::string scene;            // scene JSON (default: the chapter's own)
     bool reference = false;       // also render the CPU double-precision reference
-    bool fileOrder = false;       // structures built in the scene file's order, not median splits
-    bool groupSpheres = true;     // --layout grouped (default, 04 on): static spheres in one BLAS; instances: one each
+    // structures built in the scene file's order, not median splits
+    bool fileOrder = false;
+    // --layout grouped (default, 04 on): static spheres in one BLAS; instances: one each
+    bool groupSpheres = true;
     // From chapter 04 on:
-    bool ui = true;               // the window's overlay (viewer.h); --no-ui starts without it
-    std::string shaderSource;     // the tree whose shaders a window reloads (default: the one built from)
+    // the window's overlay (viewer.h); --no-ui starts without it
+    bool ui = true;
+    // the tree whose shaders a window reloads (default: the one built from)
+    std::string shaderSource;
 
     int framesToRun() const { return frames > 0 ? frames : (headless ? 10 : 0); }
 };

@@ -16,11 +16,12 @@ std::atomic<uint32_t>& validationMessageCount() {
 
 namespace {
 
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
-                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
     validationMessageCount()++;
-    const char* level = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
+    const char* level =
+        severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
     // Layers since 1.4 leave the rule's name (VUID-..., SYNC-HAZARD-...)
     // out of the message text; it is the message's id name.
     const char* id = data->pMessageIdName ? data->pMessageIdName : "";
@@ -55,24 +56,28 @@ bool hasLayer(const char* name) {
 
 // [region create_instance]
 VkInstance createInstance(const std::string& appName, bool validation,
-                          const std::vector<const char*>& windowExtensions, DeletionQueue& deletion) {
+                          const std::vector<const char*>& windowExtensions,
+                          DeletionQueue& deletion) {
     const char* validationLayer = "VK_LAYER_KHRONOS_validation";
     if (validation && !hasLayer(validationLayer))
-        throw std::runtime_error("--validation: the layer VK_LAYER_KHRONOS_validation is not installed "
-                                 "(Debian: apt-get install vulkan-validationlayers)");
+        throw std::runtime_error(
+            "--validation: the layer VK_LAYER_KHRONOS_validation is not installed "
+            "(Debian: apt-get install vulkan-validationlayers)");
 
     std::vector<const char*> extensions = windowExtensions;
     if (validation) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
     // Synchronization validation finds missing barriers (chapter 02): the
     // core checks alone only see invalid API usage, not data races.
-    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
     VkValidationFeaturesEXT features{
         .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
         .enabledValidationFeatureCount = 1,
         .pEnabledValidationFeatures = enables,
     };
-#ifdef VK_EXT_layer_settings  // Vulkan headers >= 1.3.268 (Debian 13; Debian 12 has 1.3.239)
+// Vulkan headers >= 1.3.268 (Debian 13; Debian 12 has 1.3.239)
+#ifdef VK_EXT_layer_settings
     // Since layer 1.4.3xx, synchronization validation sees what shaders read
     // and write through descriptors only with this setting (its default is
     // off): without it chapter 02's missing barrier goes unreported. Older
@@ -91,7 +96,8 @@ VkInstance createInstance(const std::string& appName, bool validation,
         .settingCount = 1,
         .pSettings = &shaderAccesses,
     };
-    if (validation && layerHasExtension(validationLayer, VK_EXT_LAYER_SETTINGS_EXTENSION_NAME)) {
+    if (validation &&
+        layerHasExtension(validationLayer, VK_EXT_LAYER_SETTINGS_EXTENSION_NAME)) {
         extensions.push_back(VK_EXT_LAYER_SETTINGS_EXTENSION_NAME);
         features.pNext = &settings;
     }
@@ -129,15 +135,23 @@ VkInstance createInstance(const std::string& appName, bool validation,
     // A driver manifest the loader cannot parse (a truncated .json) makes
     // it fail with VK_ERROR_OUT_OF_HOST_MEMORY: the same advice applies.
     const char* install =
-        "Install one: tools/setup.sh does (on Debian 12, Mesa's lavapipe, mesa-vulkan-drivers >= 24.1 from "
-        "bookworm-backports), or your GPU's driver; if VK_ICD_FILENAMES or VK_DRIVER_FILES is set, it must name an "
+        "Install one: tools/setup.sh does (on Debian 12, Mesa's lavapipe, "
+        "mesa-vulkan-drivers >= 24.1 from "
+        "bookworm-backports), or your GPU's driver; if VK_ICD_FILENAMES or "
+        "VK_DRIVER_FILES is set, it must name an "
         "existing, readable driver .json";
-    if (created == VK_ERROR_INCOMPATIBLE_DRIVER) throw std::runtime_error(std::string("no Vulkan driver found. ") + install);
+    if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
+        throw std::runtime_error(std::string("no Vulkan driver found. ") + install);
     if (created == VK_ERROR_OUT_OF_HOST_MEMORY)
-        throw std::runtime_error(std::string("no usable Vulkan driver (the loader returned VK_ERROR_OUT_OF_HOST_MEMORY, "
-                                             "as it does for a driver manifest it cannot read). ") + install);
+        throw std::runtime_error(
+            std::string("no usable Vulkan driver (the loader returned "
+                        "VK_ERROR_OUT_OF_HOST_MEMORY, "
+                        "as it does for a driver manifest it cannot read). ") +
+            install);
     if (created == VK_ERROR_LAYER_NOT_PRESENT)
-        throw std::runtime_error("--validation needs the Khronos validation layer (Debian: vulkan-validationlayers)");
+        throw std::runtime_error(
+            "--validation needs the Khronos validation layer (Debian: "
+            "vulkan-validationlayers)");
     VK_CHECK(created);
     deletion.push([instance] { vkDestroyInstance(instance, nullptr); });
     loadInstanceFunctions(instance);
@@ -145,8 +159,11 @@ VkInstance createInstance(const std::string& appName, bool validation,
     if (validation) {
         messengerInfo.pNext = nullptr;
         VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-        VK_CHECK(vkCreateDebugUtilsMessengerEXT(instance, &messengerInfo, nullptr, &messenger));
-        deletion.push([instance, messenger] { vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr); });
+        VK_CHECK(vkCreateDebugUtilsMessengerEXT(instance, &messengerInfo, nullptr,
+                                                &messenger));
+        deletion.push([instance, messenger] {
+            vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr);
+        });
     }
     return instance;
 }
@@ -156,7 +173,8 @@ std::vector<const char*> requiredDeviceExtensions(bool present) {
     std::vector<const char*> extensions = {
         VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
         VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
-        VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME,  // required by acceleration_structure
+        // required by acceleration_structure
+        VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME,
     };
     if (present) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     return extensions;
@@ -165,7 +183,8 @@ std::vector<const char*> requiredDeviceExtensions(bool present) {
 namespace {
 
 // Everything `device` lacks for this tutorial, empty when it fits.
-std::vector<std::string> missingRequirements(VkPhysicalDevice device, VkSurfaceKHR surface,
+std::vector<std::string> missingRequirements(VkPhysicalDevice device,
+                                             VkSurfaceKHR surface,
                                              uint32_t& queueFamily) {
     std::vector<std::string> missing;
     VkPhysicalDeviceProperties properties;
@@ -175,18 +194,25 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice device, VkSurfaceK
     uint32_t count = 0;
     VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
     std::vector<VkExtensionProperties> available(count);
-    VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, available.data()));
+    VK_CHECK(
+        vkEnumerateDeviceExtensionProperties(device, nullptr, &count, available.data()));
     for (const char* name : requiredDeviceExtensions(surface != VK_NULL_HANDLE)) {
         bool found = false;
-        for (const auto& e : available) found = found || std::strcmp(e.extensionName, name) == 0;
+        for (const auto& e : available)
+            found = found || std::strcmp(e.extensionName, name) == 0;
         if (!found) missing.push_back(name);
     }
     if (!missing.empty()) return missing;  // feature queries need the extensions
 
-    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-    VkPhysicalDeviceAccelerationStructureFeaturesKHR as{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, .pNext = &rt};
-    VkPhysicalDeviceVulkan12Features v12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, .pNext = &as};
-    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &v12};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
+        .pNext = &rt};
+    VkPhysicalDeviceVulkan12Features v12{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, .pNext = &as};
+    VkPhysicalDeviceFeatures2 features{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &v12};
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!v12.bufferDeviceAddress) missing.push_back("bufferDeviceAddress");
     if (!v12.hostQueryReset) missing.push_back("hostQueryReset");
@@ -202,14 +228,18 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice device, VkSurfaceK
     for (uint32_t i = 0; i < count && !foundQueue; ++i) {
         VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
         VkBool32 present = VK_TRUE;
-        if (surface) VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &present));
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0 && present) {
+        if (surface)
+            VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &present));
+        if ((families[i].queueFlags & need) == need &&
+            families[i].timestampValidBits > 0 && present) {
             queueFamily = i;
             foundQueue = true;
         }
     }
-    if (!foundQueue) missing.push_back(surface ? "a graphics+compute queue with timestamps that can present"
-                                               : "a graphics+compute queue with timestamps");
+    if (!foundQueue)
+        missing.push_back(
+            surface ? "a graphics+compute queue with timestamps that can present"
+                    : "a graphics+compute queue with timestamps");
     return missing;
 }
 
@@ -226,7 +256,8 @@ int typeRank(VkPhysicalDeviceType type) {
 }  // namespace
 
 // [region pick_physical_device]
-PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surface, int requested) {
+PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surface,
+                                        int requested) {
     uint32_t count = 0;
     VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
@@ -242,7 +273,8 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devices[i], &p);
         uint32_t queue = 0;
-        std::vector<std::string> missing = missingRequirements(devices[i], surface, queue);
+        std::vector<std::string> missing =
+            missingRequirements(devices[i], surface, queue);
         std::string line = "  [" + std::to_string(i) + "] " + p.deviceName;
         if (missing.empty()) line += ": fits";
         else {
@@ -250,7 +282,8 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
             for (const auto& m : missing) line += " " + m;
         }
         report += line + "\n";
-        bool eligible = missing.empty() && (requested < 0 || requested == static_cast<int>(i));
+        bool eligible =
+            missing.empty() && (requested < 0 || requested == static_cast<int>(i));
         if (eligible && typeRank(p.deviceType) < bestRank) {
             best = static_cast<int>(i);
             bestRank = typeRank(p.deviceType);
@@ -260,25 +293,36 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
     std::printf("Vulkan devices:\n%s", report.c_str());
     if (best < 0)
         throw std::runtime_error(
-            (requested >= 0 ? "device " + std::to_string(requested) + " cannot run RayGlass"
-                            : std::string("no Vulkan device can run RayGlass")) +
-            " (needs VK_KHR_ray_tracing_pipeline, VK_KHR_acceleration_structure and buffer device addresses):\n" +
+            (requested >= 0
+                 ? "device " + std::to_string(requested) + " cannot run RayGlass"
+                 : std::string("no Vulkan device can run RayGlass")) +
+            " (needs VK_KHR_ray_tracing_pipeline, VK_KHR_acceleration_structure and "
+            "buffer device addresses):\n" +
             report);
 
-    PhysicalDeviceChoice choice{.handle = devices[best], .index = static_cast<uint32_t>(best), .queueFamily = bestQueue};
-    choice.accelerationStructure.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR;
-    choice.rayTracing.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
+    PhysicalDeviceChoice choice{.handle = devices[best],
+                                .index = static_cast<uint32_t>(best),
+                                .queueFamily = bestQueue};
+    choice.accelerationStructure.sType =
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR;
+    choice.rayTracing.sType =
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
     choice.rayTracing.pNext = &choice.accelerationStructure;
-    VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, .pNext = &choice.rayTracing};
-    VkPhysicalDeviceProperties2 properties{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+    VkPhysicalDeviceDriverProperties driver{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES,
+        .pNext = &choice.rayTracing};
+    VkPhysicalDeviceProperties2 properties{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
     vkGetPhysicalDeviceProperties2(choice.handle, &properties);
     choice.properties = properties.properties;
     choice.rayTracing.pNext = nullptr;  // do not keep pointers into this stack frame
     choice.driver = std::string(driver.driverName) + " / " + driver.driverInfo;
     // An optional feature, used where the device has it: a launch sized by
     // the GPU (chapter 10's second launch).
-    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &rt};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    VkPhysicalDeviceFeatures2 features{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &rt};
     vkGetPhysicalDeviceFeatures2(choice.handle, &features);
     choice.traceRaysIndirect = rt.rayTracingPipelineTraceRaysIndirect;
     return choice;
@@ -286,7 +330,8 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
 // [end]
 
 // [region create_device]
-VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, DeletionQueue& deletion) {
+VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present,
+                      DeletionQueue& deletion) {
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue{
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -299,7 +344,8 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, Deleti
     VkPhysicalDeviceRayTracingPipelineFeaturesKHR rayTracing{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR,
         .rayTracingPipeline = VK_TRUE,
-        .rayTracingPipelineTraceRaysIndirect = physical.traceRaysIndirect,  // optional (chapter 10)
+        // optional (chapter 10)
+        .rayTracingPipelineTraceRaysIndirect = physical.traceRaysIndirect,
     };
     VkPhysicalDeviceAccelerationStructureFeaturesKHR accelerationStructure{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
@@ -310,7 +356,8 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, Deleti
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = &accelerationStructure,
         .hostQueryReset = VK_TRUE,       // reset timestamp queries from the CPU
-        .bufferDeviceAddress = VK_TRUE,  // acceleration structures and the SBT live at GPU addresses
+        // acceleration structures and the SBT live at GPU addresses
+        .bufferDeviceAddress = VK_TRUE,
     };
     std::vector<const char*> extensions = requiredDeviceExtensions(present);
     VkDeviceCreateInfo info{

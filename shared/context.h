@@ -16,7 +16,8 @@ namespace rg {
 std::atomic<uint32_t>& validationMessageCount();
 
 VkInstance createInstance(const std::string& appName, bool validation,
-                          const std::vector<const char*>& windowExtensions, DeletionQueue& deletion);
+                          const std::vector<const char*>& windowExtensions,
+                          DeletionQueue& deletion);
 
 struct PhysicalDeviceChoice {
     VkPhysicalDevice handle = VK_NULL_HANDLE;
@@ -26,7 +27,8 @@ struct PhysicalDeviceChoice {
     VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracing{};
     VkPhysicalDeviceAccelerationStructurePropertiesKHR accelerationStructure{};
     std::string driver;  // driver name and info, e.g. "llvmpipe / Mesa 25.0.7"
-    bool traceRaysIndirect = false;  // optional: a launch sized by the GPU (chapter 10's second launch)
+    // optional: a launch sized by the GPU (chapter 10's second launch)
+    bool traceRaysIndirect = false;
 };
 
 // The device extensions a ray tracing chapter needs.
@@ -35,7 +37,8 @@ std::vector<const char*> requiredDeviceExtensions(bool present);
 // Lists every device with what it lacks; takes `requested` (>= 0) or else the
 // best fit (discrete > integrated > virtual > CPU). Throws with the list of
 // what is missing when none fits.
-PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surface, int requested);
+PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surface,
+                                        int requested);
 
 struct Gpu {
     VkInstance instance = VK_NULL_HANDLE;
@@ -47,6 +50,7 @@ struct Gpu {
 
 // One queue that does graphics, compute and transfer (and presents, when a
 // surface is given), with ray tracing and buffer device addresses enabled.
-VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present, DeletionQueue& deletion);
+VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present,
+                      DeletionQueue& deletion);
 
 }  // namespace rg

@@ -15,7 +15,9 @@ public:
     DeletionQueue& operator=(const DeletionQueue&) = delete;
     ~DeletionQueue() { flush(); }
 
-    void push(std::function<void()> destroy) { destroyers_.push_back(std::move(destroy)); }
+    void push(std::function<void()> destroy) {
+        destroyers_.push_back(std::move(destroy));
+    }
 
     void flush() {
         while (!destroyers_.empty()) {

@@ -4,12 +4,15 @@
 
 namespace rg {
 
-DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion, const std::vector<DescriptorBinding>& bindings) {
+DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion,
+                                  const std::vector<DescriptorBinding>& bindings) {
     DescriptorSet d;
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& b : bindings) {
-        layoutBindings.push_back({.binding = b.binding, .descriptorType = b.type, .descriptorCount = 1,
+        layoutBindings.push_back({.binding = b.binding,
+                                  .descriptorType = b.type,
+                                  .descriptorCount = 1,
                                   .stageFlags = b.stages});
         sizes.push_back({.type = b.type, .descriptorCount = 1});
     }
@@ -41,8 +44,10 @@ DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion, const
     return d;
 }
 
-void writeStorageImage(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkImageView view) {
-    VkDescriptorImageInfo image{.imageView = view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
+void writeStorageImage(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                       VkImageView view) {
+    VkDescriptorImageInfo image{.imageView = view,
+                                .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet write{
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set,
@@ -54,8 +59,10 @@ void writeStorageImage(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, Vk
     vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
 }
 
-void writeBuffer(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, const Buffer& buffer) {
-    VkDescriptorBufferInfo info{.buffer = buffer.handle, .offset = 0, .range = VK_WHOLE_SIZE};
+void writeBuffer(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                 VkDescriptorType type, const Buffer& buffer) {
+    VkDescriptorBufferInfo info{
+        .buffer = buffer.handle, .offset = 0, .range = VK_WHOLE_SIZE};
     VkWriteDescriptorSet write{
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = set,
@@ -67,7 +74,8 @@ void writeBuffer(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkDescri
     vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
 }
 
-void writeAccelerationStructure(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkAccelerationStructureKHR as) {
+void writeAccelerationStructure(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                                VkAccelerationStructureKHR as) {
     VkWriteDescriptorSetAccelerationStructureKHR info{
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR,
         .accelerationStructureCount = 1,
@@ -84,8 +92,10 @@ void writeAccelerationStructure(const Gpu& gpu, VkDescriptorSet set, uint32_t bi
     vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
 }
 
-VkPipelineLayout createPipelineLayout(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
-                                      uint32_t pushConstantBytes, VkShaderStageFlags pushStages) {
+VkPipelineLayout createPipelineLayout(const Gpu& gpu, DeletionQueue& deletion,
+                                      VkDescriptorSetLayout setLayout,
+                                      uint32_t pushConstantBytes,
+                                      VkShaderStageFlags pushStages) {
     VkPushConstantRange push{.stageFlags = pushStages, .size = pushConstantBytes};
     VkPipelineLayoutCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
@@ -101,8 +111,8 @@ VkPipelineLayout createPipelineLayout(const Gpu& gpu, DeletionQueue& deletion, V
     return layout;
 }
 
-VkPipeline createComputePipeline(const Gpu& gpu, DeletionQueue& deletion, VkPipelineLayout layout,
-                                 const std::string& shader) {
+VkPipeline createComputePipeline(const Gpu& gpu, DeletionQueue& deletion,
+                                 VkPipelineLayout layout, const std::string& shader) {
     VkComputePipelineCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {
@@ -114,7 +124,8 @@ VkPipeline createComputePipeline(const Gpu& gpu, DeletionQueue& deletion, VkPipe
         .layout = layout,
     };
     VkPipeline pipeline = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateComputePipelines(gpu.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    VK_CHECK(vkCreateComputePipelines(gpu.device, VK_NULL_HANDLE, 1, &info, nullptr,
+                                      &pipeline));
     VkDevice device = gpu.device;
     deletion.push([device, pipeline] { vkDestroyPipeline(device, pipeline, nullptr); });
     return pipeline;

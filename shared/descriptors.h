@@ -21,14 +21,20 @@ struct DescriptorSet {
     VkDescriptorSet set = VK_NULL_HANDLE;
 };
 
-DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion, const std::vector<DescriptorBinding>& bindings);
-void writeStorageImage(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkImageView view);
-void writeBuffer(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, const Buffer& buffer);
-void writeAccelerationStructure(const Gpu& gpu, VkDescriptorSet set, uint32_t binding, VkAccelerationStructureKHR as);
+DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion,
+                                  const std::vector<DescriptorBinding>& bindings);
+void writeStorageImage(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                       VkImageView view);
+void writeBuffer(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                 VkDescriptorType type, const Buffer& buffer);
+void writeAccelerationStructure(const Gpu& gpu, VkDescriptorSet set, uint32_t binding,
+                                VkAccelerationStructureKHR as);
 
-VkPipelineLayout createPipelineLayout(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
-                                      uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
-VkPipeline createComputePipeline(const Gpu& gpu, DeletionQueue& deletion, VkPipelineLayout layout,
-                                 const std::string& shader);
+VkPipelineLayout createPipelineLayout(const Gpu& gpu, DeletionQueue& deletion,
+                                      VkDescriptorSetLayout setLayout,
+                                      uint32_t pushConstantBytes,
+                                      VkShaderStageFlags pushStages);
+VkPipeline createComputePipeline(const Gpu& gpu, DeletionQueue& deletion,
+                                 VkPipelineLayout layout, const std::string& shader);
 
 }  // namespace rg

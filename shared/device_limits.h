@@ -12,14 +12,18 @@ namespace rg {
 // What grows with the image, besides the RGBA32F target (16 bytes a pixel,
 // and as much again to read it back).
 struct PixelCosts {
-    bool rayTracing = true;           // vkCmdTraceRaysKHR's limits, else a compute dispatch's
+    // vkCmdTraceRaysKHR's limits, else a compute dispatch's
+    bool rayTracing = true;
     uint32_t groupSize = 16;          // compute: the workgroup's width and height
-    double storageBytesPerPixel = 0;  // the largest storage buffer bound by pixel (ray counts: 4)
-    double addressedBytesPerPixel = 0;  // a buffer read by address, no range limit (chapter 10's queue)
+    // the largest storage buffer bound by pixel (ray counts: 4)
+    double storageBytesPerPixel = 0;
+    // a buffer read by address, no range limit (chapter 10's queue)
+    double addressedBytesPerPixel = 0;
 };
 
 // Throws InputError when `width` x `height` does not fit.
-void checkImageFits(const Gpu& gpu, uint32_t width, uint32_t height, const PixelCosts& costs);
+void checkImageFits(const Gpu& gpu, uint32_t width, uint32_t height,
+                    const PixelCosts& costs);
 
 // The most bytes one storage buffer may hold here (maxStorageBufferRange,
 // or one allocation's maximum if smaller), and its name for a message.

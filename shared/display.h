@@ -16,7 +16,8 @@ inline double linearToSrgb(double linear) {
 }
 
 inline double srgbToLinear(double encoded) {
-    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+    return encoded <= 0.04045 ? encoded / 12.92
+                              : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
 // NaN is shown as 0 (black) here; the reports count NaN/Inf separately.

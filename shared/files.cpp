@@ -17,11 +17,15 @@ void requireRegularFile(const std::string& path, const std::string& key) {
     std::error_code error;
     fs::file_status status = fs::status(path, error);
     std::string where = key + ": " + escapeControl(path) + ": ";
-    if (error == std::errc::too_many_symbolic_link_levels) throw InputError(where + "a loop of symbolic links");
-    if (status.type() == fs::file_type::not_found) throw InputError(where + "no such file");
+    if (error == std::errc::too_many_symbolic_link_levels)
+        throw InputError(where + "a loop of symbolic links");
+    if (status.type() == fs::file_type::not_found)
+        throw InputError(where + "no such file");
     if (error) throw InputError(where + error.message());
-    if (status.type() == fs::file_type::directory) throw InputError(where + "is a folder, not a file");
-    if (status.type() != fs::file_type::regular)  // reading a FIFO waits forever, /dev/zero never ends
+    if (status.type() == fs::file_type::directory)
+        throw InputError(where + "is a folder, not a file");
+    // reading a FIFO waits forever, /dev/zero never ends
+    if (status.type() != fs::file_type::regular)
         throw InputError(where + "is not a regular file (a FIFO, a device or a socket)");
 }
 
@@ -47,14 +51,16 @@ int writeAll(int fd, const void* bytes, size_t size) {
 }
 
 [[noreturn]] void cannotWrite(const std::string& path, int error) {
-    throw std::runtime_error("cannot write " + escapeControl(path) + ": " + std::strerror(error));
+    throw std::runtime_error("cannot write " + escapeControl(path) + ": " +
+                             std::strerror(error));
 }
 }  // namespace
 
 void writeFileAtomically(const std::string& path, const void* bytes, size_t size) {
     makeParent(path);
     struct stat existing {};
-    if (stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {  // /dev/null, a FIFO: in place
+    // /dev/null, a FIFO: in place
+    if (stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
         int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd < 0) cannotWrite(path, errno);
         int error = writeAll(fd, bytes, size);
@@ -62,7 +68,8 @@ void writeFileAtomically(const std::string& path, const void* bytes, size_t size
         if (error) cannotWrite(path, error);
         return;
     }
-    std::string temp = path + ".partial-XXXXXX";  // same folder: the rename below is atomic
+    // same folder: the rename below is atomic
+    std::string temp = path + ".partial-XXXXXX";
     int fd = mkstemp(temp.data());
     if (fd < 0) cannotWrite(path, errno);
     setFileInProgress(temp.c_str());

@@ -9,14 +9,19 @@
 
 namespace rg {
 
-FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipelineStageFlags renderStage,
-                     DeletionQueue& deletion)
-    : gpu_(gpu), window_(window), target_(target), renderStage_(renderStage), deletion_(deletion),
+FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target,
+                     VkPipelineStageFlags renderStage, DeletionQueue& deletion)
+    : gpu_(gpu),
+      window_(window),
+      target_(target),
+      renderStage_(renderStage),
+      deletion_(deletion),
       timer_(gpu, deletion, kFramesInFlight) {
     VkDevice device = gpu.device;
     VkCommandPoolCreateInfo poolInfo{
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,  // re-record each frame's buffer
+        // re-record each frame's buffer
+        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
         .queueFamilyIndex = gpu.physical.queueFamily,
     };
     VkCommandPool pool = VK_NULL_HANDLE;
@@ -33,7 +38,8 @@ FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipe
         };
         VK_CHECK(vkAllocateCommandBuffers(device, &allocate, &f.cmd));
         // Created signalled: the first wait on a fresh frame returns at once.
-        VkFenceCreateInfo fence{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, .flags = VK_FENCE_CREATE_SIGNALED_BIT};
+        VkFenceCreateInfo fence{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO,
+                                .flags = VK_FENCE_CREATE_SIGNALED_BIT};
         VK_CHECK(vkCreateFence(device, &fence, nullptr, &f.inFlight));
         VkSemaphoreCreateInfo semaphore{.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
         VK_CHECK(vkCreateSemaphore(device, &semaphore, nullptr, &f.imageAvailable));
@@ -64,8 +70,9 @@ FrameLoop::FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipe
 void FrameLoop::prepareTarget() {
     // The target lives in GENERAL layout: shaders write it, blits and copies read it.
     submitOnce(gpu_, [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, renderStage_, VK_ACCESS_SHADER_WRITE_BIT);
+        imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                     renderStage_, VK_ACCESS_SHADER_WRITE_BIT);
     });
 }
 
@@ -90,7 +97,8 @@ FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
     times = {};
     uint32_t frame = 0;
     while (frames == 0 || frame < uint32_t(frames)) {
-        if (interrupted()) break;  // Ctrl-C: the frames in flight finish below, then the run writes them
+        // Ctrl-C: the frames in flight finish below, then the run writes them
+        if (interrupted()) break;
         auto cpuStart = std::chrono::steady_clock::now();
         if (window_) {
             window_->pollEvents();
@@ -110,15 +118,18 @@ FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
         //    the image is really free; the CPU does not wait for it.
         uint32_t imageIndex = 0;
         if (window_) {
-            VkResult acquired = vkAcquireNextImageKHR(gpu_.device, window_->swapchain, UINT64_MAX,
-                                                      f.imageAvailable, VK_NULL_HANDLE, &imageIndex);
-            if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {  // resized: try again next iteration
+            VkResult acquired =
+                vkAcquireNextImageKHR(gpu_.device, window_->swapchain, UINT64_MAX,
+                                      f.imageAvailable, VK_NULL_HANDLE, &imageIndex);
+            // resized: try again next iteration
+            if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
                 recreateSwapchain();
                 continue;
             }
             if (acquired != VK_SUBOPTIMAL_KHR) VK_CHECK(acquired);
         }
-        VK_CHECK(vkResetFences(gpu_.device, 1, &f.inFlight));  // only once work will signal it
+        // only once work will signal it
+        VK_CHECK(vkResetFences(gpu_.device, 1, &f.inFlight));
 
         // 3. Record: barrier, the chapter's rendering (timed), presentation.
         VK_CHECK(vkResetCommandBuffer(f.cmd, 0));
@@ -129,9 +140,10 @@ FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
         VK_CHECK(vkBeginCommandBuffer(f.cmd, &begin));
         // The previous frame wrote the target (and blitted from it): its
         // writes must land before this frame writes or reads it again.
-        imageBarrier(f.cmd, target_.handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                     renderStage_ | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                     renderStage_, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        imageBarrier(
+            f.cmd, target_.handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+            renderStage_ | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            renderStage_, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         timer_.begin(f.cmd, slot);
         record(f.cmd, frame);
         timer_.end(f.cmd, slot);
@@ -165,12 +177,15 @@ FrameTimes FrameLoop::run(int frames, const RecordFrame& record) {
                 .pImageIndices = &imageIndex,
             };
             VkResult presented = vkQueuePresentKHR(gpu_.queue, &present);
-            if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || window_->resized())
+            if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR ||
+                window_->resized())
                 recreateSwapchain();
             else
                 VK_CHECK(presented);
         }
-        times.cpuMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count());
+        times.cpuMs.push_back(std::chrono::duration<double, std::milli>(
+                                  std::chrono::steady_clock::now() - cpuStart)
+                                  .count());
         ++frame;
     }
     VK_CHECK(vkDeviceWaitIdle(gpu_.device));
@@ -190,15 +205,21 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
     // target, so it may run on the GPU while the render still finishes.
     if (!omitRenderBarrier) vkCmdSetEvent(cmd, f.rendered, renderStage_);
 
-    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0,  // chained to the acquire semaphore's wait stage
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 // chained to the acquire semaphore's wait stage
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT);
     VkClearColorValue black{};
     VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
-    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,  // clear ...
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);  // ... before blit
+    vkCmdClearColorImage(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
+                         &whole);
+    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 // clear ...
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 // ... before blit
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
 
     // Event, wait: the blit reads the target only after the render wrote it.
     VkImageMemoryBarrier renderedToBlit{
@@ -214,8 +235,9 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
     };
     if (omitRenderBarrier) {  // the bug chapter 02 shows: wait for nothing
         renderedToBlit.srcAccessMask = 0;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                             nullptr, 0, nullptr, 1, &renderedToBlit);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                             &renderedToBlit);
     } else {
         vkCmdWaitEvents(cmd,
                         1, &f.rendered,                  // the event set above
@@ -223,14 +245,18 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
                         VK_PIPELINE_STAGE_TRANSFER_BIT,  // the blit waits
                         0, nullptr,                      // no global memory barriers
                         0, nullptr,                      // no buffer barriers
-                        1, &renderedToBlit);             // the target's writes -> the blit's reads
-        vkCmdResetEvent(cmd, f.rendered, VK_PIPELINE_STAGE_TRANSFER_BIT);  // ready for the next frame
+                        // the target's writes -> the blit's reads
+                        1, &renderedToBlit);
+        // ready for the next frame
+        vkCmdResetEvent(cmd, f.rendered, VK_PIPELINE_STAGE_TRANSFER_BIT);
     }
 
     // Letterbox: keep the render's aspect ratio inside the window.
     VkExtent2D src = shown.width > 0 ? shown : target_.extent, dst = window_->extent;
-    double scale = std::min(double(dst.width) / src.width, double(dst.height) / src.height);
-    int32_t w = std::max(1, int32_t(src.width * scale)), h = std::max(1, int32_t(src.height * scale));
+    double scale =
+        std::min(double(dst.width) / src.width, double(dst.height) / src.height);
+    int32_t w = std::max(1, int32_t(src.width * scale)),
+            h = std::max(1, int32_t(src.height * scale));
     int32_t x = (int32_t(dst.width) - w) / 2, y = (int32_t(dst.height) - h) / 2;
     VkImageBlit blit{
         .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
@@ -243,22 +269,29 @@ void FrameLoop::recordPresentation(VkCommandBuffer cmd, Frame& f, uint32_t image
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, blitFilter_);
     // Back to GENERAL for the next frame's shaders (the next frame's first
     // barrier orders their writes after this blit's reads).
-    imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0, renderStage_, 0);
-    if (overlay) {  // drawn over the blitted image: the window's only pixels not ray traced
-        imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                     VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    imageBarrier(cmd, target_.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, renderStage_,
+                 0);
+    // drawn over the blitted image: the window's only pixels not ray traced
+    if (overlay) {
+        imageBarrier(
+            cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+            VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
         overlay(cmd, imageIndex);
-        imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+        imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                      VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
         return;
     }
-    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);  // present waits on the semaphore
+    imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT,
+                 // present waits on the semaphore
+                 VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
 }
 // [end]
 

@@ -24,8 +24,8 @@ public:
 
     // window == nullptr: headless. renderStage: the stage that writes the
     // target (compute shader in chapters 01-02, ray tracing from 03 on).
-    FrameLoop(const Gpu& gpu, Window* window, const Image& target, VkPipelineStageFlags renderStage,
-              DeletionQueue& deletion);
+    FrameLoop(const Gpu& gpu, Window* window, const Image& target,
+              VkPipelineStageFlags renderStage, DeletionQueue& deletion);
 
     // Renders `frames` frames, or until the window closes when frames == 0.
     FrameTimes run(int frames, const RecordFrame& record);
@@ -54,9 +54,11 @@ public:
 private:
     struct Frame {
         VkCommandBuffer cmd = VK_NULL_HANDLE;
-        VkFence inFlight = VK_NULL_HANDLE;            // signalled when the GPU finished this frame
+        // signalled when the GPU finished this frame
+        VkFence inFlight = VK_NULL_HANDLE;
         VkSemaphore imageAvailable = VK_NULL_HANDLE;  // acquire -> render
-        VkEvent rendered = VK_NULL_HANDLE;            // render -> blit, with work in between
+        // render -> blit, with work in between
+        VkEvent rendered = VK_NULL_HANDLE;
         bool timed = false;                           // its timestamps wait to be read
     };
     void recordPresentation(VkCommandBuffer cmd, Frame& frame, uint32_t imageIndex);
@@ -72,7 +74,8 @@ private:
     Frame frames_[kFramesInFlight];
     // One per swapchain image: render -> present. Shared with the deletion
     // queue, which destroys them after this object is gone.
-    std::shared_ptr<std::vector<VkSemaphore>> renderFinished_ = std::make_shared<std::vector<VkSemaphore>>();
+    std::shared_ptr<std::vector<VkSemaphore>> renderFinished_ =
+        std::make_shared<std::vector<VkSemaphore>>();
     VkFilter blitFilter_ = VK_FILTER_NEAREST;
     FrameTimes times_;
 };

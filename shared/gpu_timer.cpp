@@ -9,7 +9,8 @@ GpuTimer::GpuTimer(const Gpu& gpu, DeletionQueue& deletion, uint32_t slots)
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical.handle, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical.handle, &count, families.data());
+    vkGetPhysicalDeviceQueueFamilyProperties(gpu.physical.handle, &count,
+                                             families.data());
     uint32_t bits = families[gpu.physical.queueFamily].timestampValidBits;
     mask_ = bits >= 64 ? ~0ull : (1ull << bits) - 1;
     VkQueryPoolCreateInfo info{
@@ -18,7 +19,8 @@ GpuTimer::GpuTimer(const Gpu& gpu, DeletionQueue& deletion, uint32_t slots)
         .queryCount = 2 * slots,
     };
     VK_CHECK(vkCreateQueryPool(device_, &info, nullptr, &pool_));
-    vkResetQueryPool(device_, pool_, 0, 2 * slots);  // hostQueryReset: queries start reset
+    // hostQueryReset: queries start reset
+    vkResetQueryPool(device_, pool_, 0, 2 * slots);
     VkDevice device = device_;
     VkQueryPool pool = pool_;
     deletion.push([device, pool] { vkDestroyQueryPool(device, pool, nullptr); });
@@ -35,7 +37,8 @@ void GpuTimer::end(VkCommandBuffer cmd, uint32_t slot) {
 
 double GpuTimer::readMs(uint32_t slot) const {
     uint64_t stamps[2] = {0, 0};
-    VK_CHECK(vkGetQueryPoolResults(device_, pool_, 2 * slot, 2, sizeof(stamps), stamps, sizeof(uint64_t),
+    VK_CHECK(vkGetQueryPoolResults(device_, pool_, 2 * slot, 2, sizeof(stamps), stamps,
+                                   sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     uint64_t ticks = (stamps[1] - stamps[0]) & mask_;
     return static_cast<double>(ticks) * periodNs_ * 1e-6;

@@ -10,7 +10,8 @@ namespace rg {
 class GpuTimer {
 public:
     GpuTimer(const Gpu& gpu, DeletionQueue& deletion, uint32_t slots);
-    void begin(VkCommandBuffer cmd, uint32_t slot);  // resets the slot, then writes the first timestamp
+    // resets the slot, then writes the first timestamp
+    void begin(VkCommandBuffer cmd, uint32_t slot);
     void end(VkCommandBuffer cmd, uint32_t slot);
     // Milliseconds between begin and end; waits until the GPU has written them.
     double readMs(uint32_t slot) const;

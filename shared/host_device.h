@@ -16,7 +16,8 @@ using vec4 = glm::vec4;
 using uvec2 = glm::uvec2;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
-#define RG_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T ": size differs from its GLSL layout")
+#define RG_SIZE(T, bytes) \
+    static_assert(sizeof(T) == (bytes), #T ": size differs from its GLSL layout")
 #define RG_INLINE inline
 #else
 #define RG_SIZE(T, bytes)
@@ -39,7 +40,8 @@ RG_SIZE(PatternPush, 16);
 
 // ---- Chapter 03: a top view of the TLAS instances --------------------------
 #define FOOTPRINT_BINDING_TARGET 0     // storage image
-#define FOOTPRINT_BINDING_INSTANCES 1  // the VkAccelerationStructureInstanceKHR array the TLAS is built from
+// the VkAccelerationStructureInstanceKHR array the TLAS is built from
+#define FOOTPRINT_BINDING_INSTANCES 1
 
 // VkAccelerationStructureInstanceKHR as GLSL sees it: a 3x4 row-major
 // transform, then customIndex|mask, sbtOffset|flags, the BLAS address.
@@ -66,20 +68,24 @@ RG_SIZE(FootprintPush, 32);
 // Instance i's colour in the top view: 8 distinct colours.
 RG_INLINE vec3 instanceColor(uint i) {
     uint k = i % 8u;
-    return vec3(float(k & 1u), float((k >> 1u) & 1u), float((k >> 2u) & 1u)) * 0.6f + vec3(0.25f);
+    return vec3(float(k & 1u), float((k >> 1u) & 1u), float((k >> 2u) & 1u)) * 0.6f +
+           vec3(0.25f);
 }
 
 // ---- Chapters 04-11: the ray tracing pipeline ------------------------------
 #define RT_BINDING_TLAS 0       // the scene's top-level acceleration structure
 #define RT_BINDING_TARGET 1     // storage image, rgba32f, linear radiance
 #define RT_BINDING_CAMERA 2     // uniform RtCamera
-#define RT_BINDING_OBJECTS 3    // GpuObject[], indexed by gl_InstanceCustomIndexEXT + gl_PrimitiveID
+// GpuObject[], indexed by gl_InstanceCustomIndexEXT + gl_PrimitiveID
+#define RT_BINDING_OBJECTS 3
 #define RT_BINDING_MATERIALS 4  // GpuMaterial[]
 #define RT_BINDING_LIGHTS 5     // GpuLight[]
 #define RT_BINDING_SKY 6        // vec4[] linear sky texels, row-major, top row first
 #define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
-#define RT_BINDING_MESHES 8     // GpuMesh[]: where each mesh's buffers are (chapter 12, --sphere-mesh)
-#define RT_BINDING_TEXTURES 9   // vec4[] linear texels of every base colour texture, one after another (chapter 12)
+// GpuMesh[]: where each mesh's buffers are (chapter 12, --sphere-mesh)
+#define RT_BINDING_MESHES 8
+// vec4[] linear texels of every base colour texture, one after another (chapter 12)
+#define RT_BINDING_TEXTURES 9
 
 #define SHAPE_SPHERE 0u
 #define SHAPE_QUAD 1u
@@ -88,9 +94,11 @@ RG_INLINE vec3 instanceColor(uint i) {
 // Hit groups in the SBT: one per shape and ray type (see shared/sbt.h).
 #define HIT_GROUP_QUAD 0u
 #define HIT_GROUP_SPHERE 1u
-#define HIT_GROUP_MESH 2u  // triangle meshes (chapter 12) and the tessellated sphere (--sphere-mesh)
+// triangle meshes (chapter 12) and the tessellated sphere (--sphere-mesh)
+#define HIT_GROUP_MESH 2u
 #define RAY_TYPE_PRIMARY 0u  // sbtRecordOffset of camera and bounce rays
-#define RAY_TYPE_SHADOW 3u   // sbtRecordOffset of shadow rays (chapter 06 on): after the 3 primary groups
+// sbtRecordOffset of shadow rays (chapter 06 on): after the 3 primary groups
+#define RAY_TYPE_SHADOW 3u
 #define MISS_SKY 0u
 #define MISS_SHADOW 1u
 
@@ -102,8 +110,10 @@ struct RtCamera {
     vec4 skyBottom;
     vec4 ambient;      // I_a (chapter 05)
     uvec4 counts;      // sky width, sky height (0: gradient), light count, object count
-    vec4 eye;          // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface);
-                       // y: the medium the eye is in (chapter 13): material index + 1, 0 for air; z, w unused
+    // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface);
+    vec4 eye;
+    // y: the medium the eye is in (chapter 13): material index + 1, 0 for air; z, w
+    // unused
 };
 RG_SIZE(RtCamera, 224);
 
@@ -112,7 +122,9 @@ struct GpuObject {
                     // for an instance of the unit sphere, the real one in a sphere group
     uint shape;     // SHAPE_*
     uint material;  // index into materials
-    float radius;   // world space: the ball of this radius about the centre holds the shape (0: a quad, a mesh)
+    // world space: the ball of this radius about the centre holds the shape (0: a quad, a
+    // mesh)
+    float radius;
     uint mesh;      // SHAPE_MESH: index into the mesh table (chapter 12)
 };
 RG_SIZE(GpuObject, 32);
@@ -125,7 +137,8 @@ struct GpuMesh {
     uvec2 vertices;  // vec3 positions, tightly packed (the BLAS was built from them)
     uvec2 normals;   // vec3 per vertex; (0, 0): none, the faces are flat
     uvec2 indices;   // uint, three per triangle
-    uvec2 texcoords; // vec2 per vertex, glTF's (0, 0) at the image's top-left; (0, 0): none
+    // vec2 per vertex, glTF's (0, 0) at the image's top-left; (0, 0): none
+    uvec2 texcoords;
 };
 RG_SIZE(GpuMesh, 32);
 // [end]
@@ -136,10 +149,12 @@ struct GpuMaterial {
     vec4 kd;
     vec4 ks;
     vec4 params;   // shininess, reflectivity, transmission, ior
-    vec4 extra;    // f0, roughness; chapter 13's dispersion: 1 / Abbe number (0: none), GLASS_*
+    // f0, roughness; chapter 13's dispersion: 1 / Abbe number (0: none), GLASS_*
+    vec4 extra;
     uvec4 texture; // chapter 12's base colour texture: its first texel in textures[],
                    // width, height (0: none), TEXTURE_* flags
-    vec4 medium;   // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
+    // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
+    vec4 medium;
 };
 RG_SIZE(GpuMaterial, 112);
 // [end]
@@ -162,11 +177,13 @@ RG_SIZE(GpuMaterial, 112);
 #define GLASS_DIAMOND 4u       // Peter 1923
 #define SELLMEIER_BK7 1.03961212, 0.231792344, 1.01046945, 0.0, \
                       0.00600069867, 0.0200179144, 103.560653, 1.0
-#define SELLMEIER_FUSED_SILICA 0.6961663, 0.4079426, 0.8974794, 0.0, \
-                      0.0684043 * 0.0684043, 0.1162414 * 0.1162414, 9.896161 * 9.896161, 1.0
+#define SELLMEIER_FUSED_SILICA                                                          \
+    0.6961663, 0.4079426, 0.8974794, 0.0, 0.0684043 * 0.0684043, 0.1162414 * 0.1162414, \
+        9.896161 * 9.896161, 1.0
 #define SELLMEIER_WATER 0.5684027565, 0.1726177391, 0.02086189578, 0.1130748688, \
                       0.005101829712, 0.01821153936, 0.02620722293, 10.69792721
-#define SELLMEIER_DIAMOND 0.3306, 4.3356, 0.0, 0.0, 0.1750 * 0.1750, 0.1060 * 0.1060, 1.0, 1.0
+#define SELLMEIER_DIAMOND \
+    0.3306, 4.3356, 0.0, 0.0, 0.1750 * 0.1750, 0.1060 * 0.1060, 1.0, 1.0
 // [end]
 
 // Chapter 13's wavelengths: a path that meets a dispersive surface carries
@@ -199,13 +216,22 @@ struct RtPush {
     uint maxDepth;       // bounce limit (chapter 08 on)
     uint samplesPerHit;  // rough reflection rays per hit (chapter 11)
     uint pattern;        // sample pattern (chapter 11)
-    uint fresnelMode;    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter 09)
-    uint accumulated;    // frames already averaged into the target (chapter 04's antialiasing, 11's rough reflections)
-    float epsilon;       // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
-    float wavelength;    // chapter 13: > 0, every path at this wavelength (nm); 0: one drawn per path
-    uvec2 treeQueue;     // the tree queue's device address, low and high 32 bits (chapter 10)
-    float exposure;      // 2^EV, what the written radiance is scaled by (--exposure; chapter 05 on)
-    uint antialias;      // 1: each frame's camera rays pass a new point of the pixel (--antialias, chapter 04)
+    // 0 Schlick with the material's f0, 1 Schlick with f0 from the IOR, 2 exact (chapter
+    // 09)
+    uint fresnelMode;
+    // frames already averaged into the target (chapter 04's antialiasing, 11's rough
+    // reflections)
+    uint accumulated;
+    // > 0: chapter 06's fixed-epsilon experiment instead of the robust offset
+    float epsilon;
+    // chapter 13: > 0, every path at this wavelength (nm); 0: one drawn per path
+    float wavelength;
+    // the tree queue's device address, low and high 32 bits (chapter 10)
+    uvec2 treeQueue;
+    // 2^EV, what the written radiance is scaled by (--exposure; chapter 05 on)
+    float exposure;
+    // 1: each frame's camera rays pass a new point of the pixel (--antialias, chapter 04)
+    uint antialias;
 };
 RG_SIZE(RtPush, 48);
 
@@ -214,12 +240,15 @@ struct Branch {
     vec3 origin;
     uint depth;       // bounces so far; chapter 13 sets BRANCH_SPECTRAL above them
     vec3 direction;
-    float tMax;       // how far its ray can go: twice the radius when it starts inside a sphere
+    // how far its ray can go: twice the radius when it starts inside a sphere
+    float tMax;
     vec3 throughput;  // the share of the pixel's light this branch carries
-    uint media;       // chapter 13: the media the ray is inside (shaders/common/media.glsl)
+    // chapter 13: the media the ray is inside (shaders/common/media.glsl)
+    uint media;
 };
 RG_SIZE(Branch, 48);
-#define BRANCH_SPECTRAL 0x80000000u  // chapter 13: the branch has met dispersion, its light is one wavelength's
+// chapter 13: the branch has met dispersion, its light is one wavelength's
+#define BRANCH_SPECTRAL 0x80000000u
 
 // A pixel whose ray tree goes on past its first hit, queued by chapter 10's
 // first launch for the second.

@@ -16,7 +16,8 @@ std::atomic<bool> haveFileInProgress{false};
 
 void onSignal(int number) {
     int expected = 0;
-    if (signalSeen.compare_exchange_strong(expected, number)) return;  // the first: the run stops soon
+    // the first: the run stops soon
+    if (signalSeen.compare_exchange_strong(expected, number)) return;
     if (haveFileInProgress.load()) unlink(fileInProgress);
     const char line[] = "interrupted again: quitting now, nothing written\n";
     ssize_t ignored = write(STDERR_FILENO, line, sizeof line - 1);

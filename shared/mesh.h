@@ -12,13 +12,18 @@
 namespace rg {
 
 struct Mesh {
-    std::string name;                 // for messages: "lens.obj" or "glass.gltf: mesh 0 primitive 1"
+    // for messages: "lens.obj" or "glass.gltf: mesh 0 primitive 1"
+    std::string name;
     std::vector<glm::vec3> vertices;  // object space
-    std::vector<glm::vec3> normals;   // one per vertex (smooth shading), or empty: the faces' own
-    std::vector<glm::vec2> texcoords; // one per vertex, glTF's convention ((0, 0): the image's top-left), or empty
-    std::vector<uint32_t> indices;    // three per triangle, counter-clockwise seen from outside
+    // one per vertex (smooth shading), or empty: the faces' own
+    std::vector<glm::vec3> normals;
+    // one per vertex, glTF's convention ((0, 0): the image's top-left), or empty
+    std::vector<glm::vec2> texcoords;
+    // three per triangle, counter-clockwise seen from outside
+    std::vector<uint32_t> indices;
     // Set by checkMesh:
-    size_t openEdges = 0;    // edges not shared by exactly two triangles of opposite orientation
+    // edges not shared by exactly two triangles of opposite orientation
+    size_t openEdges = 0;
     size_t degenerate = 0;   // triangles dropped: zero area, or a repeated vertex
     glm::vec3 lo{0}, hi{0};  // bounding box of the vertices the triangles use
 };
@@ -29,7 +34,8 @@ enum class TextureWrap { Repeat, Clamp, Mirror };
 struct Texture {
     std::string name;                 // for messages: "board.glb: image 0"
     uint32_t width = 0, height = 0;
-    std::vector<glm::vec3> texels;    // row-major, top row first, linear (decoded from sRGB)
+    // row-major, top row first, linear (decoded from sRGB)
+    std::vector<glm::vec3> texels;
     TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
     bool nearest = false;             // magnification NEAREST: no bilinear filter
 };
@@ -40,9 +46,9 @@ Mesh icosphere(int level);
 
 // What every loaded mesh goes through (chapter 12). Throws InputError naming
 // `mesh.name` for an index out of range, a NaN or infinite vertex or
-// normal or texture coordinate, or no triangle left; drops degenerate triangles (counted in
-// `degenerate`); counts open edges. Edges are matched by vertex position,
-// not index: a file may repeat a vertex where its normals differ.
+// normal or texture coordinate, or no triangle left; drops degenerate triangles (counted
+// in `degenerate`); counts open edges. Edges are matched by vertex position, not index: a
+// file may repeat a vertex where its normals differ.
 void checkMesh(Mesh& mesh);
 
 }  // namespace rg

@@ -22,10 +22,14 @@ struct FileMaterial {
     double metallic = 1, roughness = 1;  // glTF's defaults
     double transmission = 0;    // KHR_materials_transmission
     double ior = 1.5;           // KHR_materials_ior
-    glm::dvec3 attenuationColor{1.0};  // KHR_materials_volume (chapter 13): the colour white light
-    double attenuationDistance = 0;    // keeps after this distance in the scene's units; 0: no absorption
-    double dispersion = 0;      // KHR_materials_dispersion (chapter 13): 20 / Abbe number, 0: none
-    int baseColorTexture = -1;  // index into MeshFile::textures (times baseColor), -1: none
+    // KHR_materials_volume (chapter 13): the colour white light
+    glm::dvec3 attenuationColor{1.0};
+    // keeps after this distance in the scene's units; 0: no absorption
+    double attenuationDistance = 0;
+    // KHR_materials_dispersion (chapter 13): 20 / Abbe number, 0: none
+    double dispersion = 0;
+    // index into MeshFile::textures (times baseColor), -1: none
+    int baseColorTexture = -1;
 };
 
 struct MeshPart {
@@ -35,7 +39,8 @@ struct MeshPart {
 };
 
 struct MeshFile {
-    std::vector<Mesh> meshes;  // each checked (checkMesh); one per glTF primitive, however often placed
+    // each checked (checkMesh); one per glTF primitive, however often placed
+    std::vector<Mesh> meshes;
     std::vector<FileMaterial> materials;
     std::vector<Texture> textures;  // the base colour textures the materials use, decoded
     std::vector<MeshPart> parts;

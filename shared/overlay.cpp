@@ -18,9 +18,10 @@ namespace {
 // Debian 12 has 1.86, Debian 13 (and Ubuntu 24.04) 1.90.1: both tested.
 // 1.90.3 to 1.91 take the render pass in the init info: written from their
 // header, not run here. 1.92 manages textures itself: not supported yet.
-void initVulkanBackend(const Gpu& gpu, ImGui_ImplVulkan_InitInfo& info, VkRenderPass renderPass) {
+void initVulkanBackend(const Gpu& gpu, ImGui_ImplVulkan_InitInfo& info,
+                       VkRenderPass renderPass) {
 #if IMGUI_VERSION_NUM >= 19200
-#error "Dear ImGui 1.92 or newer: RayGlass's overlay supports 1.86 to 1.91 (shared/overlay.cpp)"
+#error "Dear ImGui 1.92 or newer: RayGlass's overlay supports 1.86 to 1.91"
 #elif IMGUI_VERSION_NUM >= 19030
     info.RenderPass = renderPass;
     bool ok = ImGui_ImplVulkan_Init(&info);
@@ -30,9 +31,11 @@ void initVulkanBackend(const Gpu& gpu, ImGui_ImplVulkan_InitInfo& info, VkRender
     if (!ok) throw std::runtime_error("ImGui: Vulkan backend failed");
 #if IMGUI_VERSION_NUM >= 19000
     (void)gpu;  // 1.90 records and waits for the upload on info.Queue itself
-    if (!ImGui_ImplVulkan_CreateFontsTexture()) throw std::runtime_error("ImGui: font upload failed");
+    if (!ImGui_ImplVulkan_CreateFontsTexture())
+        throw std::runtime_error("ImGui: font upload failed");
 #else
-    submitOnce(gpu, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+    submitOnce(gpu,
+               [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 #endif
 }
@@ -40,7 +43,8 @@ void initVulkanBackend(const Gpu& gpu, ImGui_ImplVulkan_InitInfo& info, VkRender
 
 Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
     // The font texture's one descriptor (the 1.86 backend allocates one set).
-    VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .descriptorCount = 4};
+    VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                              .descriptorCount = 4};
     VkDescriptorPoolCreateInfo poolInfo{
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT,
@@ -62,7 +66,8 @@ Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
         .initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
         .finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
     };
-    VkAttachmentReference reference{.attachment = 0, .layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference reference{.attachment = 0,
+                                    .layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkSubpassDescription subpass{
         .pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
         .colorAttachmentCount = 1,
@@ -85,11 +90,14 @@ Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
     // The swapchain is *_SRGB: it encodes what is written. ImGui's colours are
     // sRGB already, so decode them once here or the overlay looks washed out.
     for (ImVec4& c : ImGui::GetStyle().Colors)
-        c = ImVec4(float(srgbToLinear(c.x)), float(srgbToLinear(c.y)), float(srgbToLinear(c.z)), c.w);
-    if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) throw std::runtime_error("ImGui: GLFW backend failed");
+        c = ImVec4(float(srgbToLinear(c.x)), float(srgbToLinear(c.y)),
+                   float(srgbToLinear(c.z)), c.w);
+    if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true))
+        throw std::runtime_error("ImGui: GLFW backend failed");
 
     uint32_t images = uint32_t(window.images.size());
-    ImGui_ImplVulkan_InitInfo info{};  // fields set by name: their order differs between versions
+    // fields set by name: their order differs between versions
+    ImGui_ImplVulkan_InitInfo info{};
     info.Instance = gpu.instance;
     info.PhysicalDevice = gpu.physical.handle;
     info.Device = gpu.device;
@@ -97,7 +105,8 @@ Overlay::Overlay(const Gpu& gpu, Window& window) : gpu_(gpu), window_(window) {
     info.Queue = gpu.queue;
     info.DescriptorPool = pool_;
     info.MinImageCount = 2;
-    info.ImageCount = images < 2 ? 2 : images;  // vertex buffers it cycles: at least the frames in flight
+    // vertex buffers it cycles: at least the frames in flight
+    info.ImageCount = images < 2 ? 2 : images;
     info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     info.CheckVkResultFn = [](VkResult r) { VK_CHECK(r); };
     initVulkanBackend(gpu, info, renderPass_);
@@ -144,7 +153,8 @@ void Overlay::swapchainRecreated() {
             .layers = 1,
         };
         VkFramebuffer framebuffer = VK_NULL_HANDLE;
-        VK_CHECK(vkCreateFramebuffer(gpu_.device, &framebufferInfo, nullptr, &framebuffer));
+        VK_CHECK(
+            vkCreateFramebuffer(gpu_.device, &framebufferInfo, nullptr, &framebuffer));
         framebuffers_.push_back(framebuffer);
     }
     ImGui_ImplVulkan_SetMinImageCount(2);

@@ -27,7 +27,8 @@ struct Param {
     bool inverted = false;     // Toggle: the flag clears the value (--no-accumulate)
     std::vector<std::string> choices;
     bool live = true;          // false: read once at start (the overlay shows it greyed)
-    std::string section;       // the overlay's section: "" Parameters, "view" View (the camera, exposure, lights)
+    // the overlay's section: "" Parameters, "view" View (the camera, exposure, lights)
+    std::string section;
     // Checks a command-line value; returns "" or the reason it is refused.
     std::function<std::string(const std::string&)> check;
 };
@@ -36,10 +37,14 @@ class Params {
 public:
     // The returned Param stays valid (a deque never moves its elements), so
     // a chapter can refine it: params.number(...).check = ...;
-    Param& integer(const std::string& flag, int& value, const std::string& help, int min, int max);
-    Param& number(const std::string& flag, float& value, const std::string& help, double min, double max);
-    Param& choice(const std::string& flag, int& value, const std::string& help, std::vector<std::string> choices);
-    Param& toggle(const std::string& flag, bool& value, const std::string& help, bool inverted = false);
+    Param& integer(const std::string& flag, int& value, const std::string& help, int min,
+                   int max);
+    Param& number(const std::string& flag, float& value, const std::string& help,
+                  double min, double max);
+    Param& choice(const std::string& flag, int& value, const std::string& help,
+                  std::vector<std::string> choices);
+    Param& toggle(const std::string& flag, bool& value, const std::string& help,
+                  bool inverted = false);
 
     // Adds every parameter to the command line, with its default shown.
     void addTo(CLI::App& app) const;

@@ -25,10 +25,13 @@ public:
     void update(uint64_t done) {
         if (!terminal_ || total_ == 0) return;
         auto now = std::chrono::steady_clock::now();
-        if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(200)) return;
+        if (now - start_ < std::chrono::seconds(1) ||
+            now - last_ < std::chrono::milliseconds(200))
+            return;
         last_ = now;
         shown_ = true;
-        std::fprintf(stderr, "\r%s: %3d %%", what_.c_str(), int(100.0 * double(done) / double(total_)));
+        std::fprintf(stderr, "\r%s: %3d %%", what_.c_str(),
+                     int(100.0 * double(done) / double(total_)));
         std::fflush(stderr);
     }
 

@@ -13,8 +13,17 @@
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
-enum class ReferenceStage { Normals = 4, Ambient = 5, Diffuse = 6, Specular = 7, Reflection = 8, Fresnel = 9, Refraction = 10, Rough = 11,
-                            Media = 13 };  // chapter 12 renders Rough on meshes
+enum class ReferenceStage {
+    Normals = 4,
+    Ambient = 5,
+    Diffuse = 6,
+    Specular = 7,
+    Reflection = 8,
+    Fresnel = 9,
+    Refraction = 10,
+    Rough = 11,
+    Media = 13
+};  // chapter 12 renders Rough on meshes
 
 // Chapter 13: the media a ray is inside, the last entered at the back
 // (the GPU's media.glsl keeps four; so does this).
@@ -42,8 +51,10 @@ struct ReferenceSettings {
     int maxDepth = 1;
     int fresnelMode = 0;
     int samples = 1024;  // chapter 11: stratified samples per rough hit (a square number)
-    uint64_t seed = 0;   // chapter 11: another seed gives an independent estimate (to measure its error)
-    double wavelength = 0;  // chapter 13: >= 380, every path at this wavelength (nm); else:
+    // chapter 11: another seed gives an independent estimate (to measure its error)
+    uint64_t seed = 0;
+    // chapter 13: >= 380, every path at this wavelength (nm); else:
+    double wavelength = 0;
     uint32_t frames = 1;      // the frames accumulated, one wavelength per path in each,
     uint32_t firstFrame = 0;  // from this frame on
     double exposure = 1;      // 2^EV: the image is the radiance times this (--exposure)
@@ -55,11 +66,14 @@ struct ReferenceSettings {
 struct ReferenceHit {
     double t = -1;          // < 0: miss
     glm::dvec3 normal{0};   // world, unit, out of the shape
-    glm::dvec3 shading{0};  // world, unit shading normal on the side of `normal` (a mesh's interpolated one)
+    // world, unit shading normal on the side of `normal` (a mesh's interpolated one)
+    glm::dvec3 shading{0};
     uint32_t object = 0;
     bool frontFace = true;
-    double error = 0;       // how far origin + t * direction may lie from the surface (its rounding)
-    glm::dvec3 tint{1};     // a textured mesh's base colour texture at the hit (chapter 12), else 1
+    // how far origin + t * direction may lie from the surface (its rounding)
+    double error = 0;
+    // a textured mesh's base colour texture at the hit (chapter 12), else 1
+    glm::dvec3 tint{1};
 };
 
 class ReferenceRenderer {
@@ -68,9 +82,11 @@ public:
     // The closest hit along origin + t * direction with t in (tMin, tMax),
     // through a BVH over the objects' boxes; of equally close hits, the
     // object listed first.
-    ReferenceHit trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
+    ReferenceHit trace(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                       double tMax) const;
     // The same by testing every object (what the BVH must agree with: tests).
-    ReferenceHit traceLinear(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
+    ReferenceHit traceLinear(const glm::dvec3& origin, const glm::dvec3& direction,
+                             double tMin, double tMax) const;
     glm::dvec3 sky(const glm::dvec3& direction) const;
     // A base colour texture at a texture coordinate: the sampler's wrap, then
     // bilinear (or nearest) filtering, written again in double.
@@ -78,49 +94,58 @@ public:
     // The material of a hit, its ambient and diffuse colours times hit.tint.
     Material hitMaterial(const ReferenceHit& hit) const;
     // Through the point `offset` of pixel (x, y): (0.5, 0.5) its centre.
-    void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height, glm::dvec3& origin,
-                   glm::dvec3& direction, glm::dvec2 offset = glm::dvec2(0.5)) const;
+    void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                   glm::dvec3& origin, glm::dvec3& direction,
+                   glm::dvec2 offset = glm::dvec2(0.5)) const;
     // Pixel (x, y): one ray through its centre, or with settings.antialias
     // the mean of the GPU's frames' rays. Chapter 11 also returns the
     // standard error of its rough-reflection estimate in `stdError` (0 elsewhere).
-    glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
-                     double* stdError = nullptr) const;
+    glm::dvec3 shade(const ReferenceSettings& settings, uint32_t x, uint32_t y,
+                     uint32_t width, uint32_t height, double* stdError = nullptr) const;
     // One camera ray through `offset` of the pixel; `frame`: which of the
     // frames' wavelengths it carries (chapter 13), -1: all of them.
-    glm::dvec3 shadeRay(const ReferenceSettings& settings, uint32_t x, uint32_t y, uint32_t width, uint32_t height,
-                        glm::dvec2 offset, int frame, double* stdError) const;
+    glm::dvec3 shadeRay(const ReferenceSettings& settings, uint32_t x, uint32_t y,
+                        uint32_t width, uint32_t height, glm::dvec2 offset, int frame,
+                        double* stdError) const;
     // Radiance arriving along a ray (chapters 05-10), following reflections
     // and refractions up to the depth limit.
-    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
-                        int depth, const glm::dvec3& throughput) const;
+    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
+                        const glm::dvec3& direction, int depth,
+                        const glm::dvec3& throughput) const;
     // Chapter 13: the same inside `media`; `passes` counts the surfaces
     // crossed where no medium changes (at most 256 per camera ray, as the GPU).
-    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin, const glm::dvec3& direction,
-                        int depth, const glm::dvec3& throughput, const MediumStack& media, int& passes) const;
+    glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
+                        const glm::dvec3& direction, int depth,
+                        const glm::dvec3& throughput, const MediumStack& media,
+                        int& passes) const;
     // n: the geometric normal (shadow rays leave along it); ns: the shading
     // normal. Ambient and diffuse light are weighted by `local`, the
     // highlight by `highlight` (a dielectric's share F of it, chapter 09 on).
-    glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m, const glm::dvec3& p, double error,
-                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v, double local = 1,
+    glm::dvec3 localShading(const ReferenceSettings& settings, const Material& m,
+                            const glm::dvec3& p, double error, const glm::dvec3& n,
+                            const glm::dvec3& ns, const glm::dvec3& v, double local = 1,
                             double highlight = 1) const;
     // Renders every pixel on all cores. For chapter 11 each pixel's alpha
     // holds the standard error of its estimate (the reference's own error).
-    FloatImage render(const ReferenceSettings& settings, uint32_t width, uint32_t height) const;
+    FloatImage render(const ReferenceSettings& settings, uint32_t width,
+                      uint32_t height) const;
     // Where a secondary ray leaving p (normal n) starts: moved along n by the
     // hit's own error bound, as the GPU's offsetRay, but the bound of double
     // precision (about 1e-15 of the numbers involved, where the GPU's is 1e-6):
     // the reference stays close to exact geometry, so comparing against it
     // shows where the GPU's offsets change the picture.
-    glm::dvec3 secondaryOrigin(const glm::dvec3& p, double error, const glm::dvec3& n) const;
+    glm::dvec3 secondaryOrigin(const glm::dvec3& p, double error,
+                               const glm::dvec3& n) const;
     // True when nothing lies between `from` and the light (in double precision).
     bool lightVisible(const glm::dvec3& from, const glm::dvec3& light) const;
     // Camera rays ignore hits closer than this to the eye (the GPU's eyeTmin).
     double eyeTmin() const { return scene_.eyeTmin; }
 
 private:
-    // Tests object i; updates `best` when it is hit closer (or as close and listed earlier).
-    void hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax,
-                   ReferenceHit& best) const;
+    // Tests object i; updates `best` when it is hit closer (or as close and listed
+    // earlier).
+    void hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction,
+                   double tMin, double tMax, ReferenceHit& best) const;
     void buildBvh();
 
 public:
@@ -130,7 +155,8 @@ public:
     struct BvhNode {
         glm::dvec3 lo, hi;
         uint32_t first = 0, count = 0;  // a leaf: items[first, first + count)
-        uint32_t right = 0;             // an inner node: children at index + 1 and `right`
+        // an inner node: children at index + 1 and `right`
+        uint32_t right = 0;
     };
     struct Bvh {
         std::vector<BvhNode> nodes;
@@ -148,12 +174,13 @@ public:
         double t = -1;
         uint32_t triangle = 0;
         glm::dvec3 weights{0};  // barycentric weights of the triangle's three vertices
-        bool front = true;      // the winding: counter-clockwise seen from the ray's origin
+        // the winding: counter-clockwise seen from the ray's origin
+        bool front = true;
     };
     // Watertight ray-triangle test (Woop, Benthin and Wald 2013, as PBRT-v4):
     // closest hit in (tMin, tMax) over the mesh's tree, in object space.
-    static TriangleHit intersectMesh(const MeshData& mesh, const glm::dvec3& o, const glm::dvec3& d, double tMin,
-                                     double tMax);
+    static TriangleHit intersectMesh(const MeshData& mesh, const glm::dvec3& o,
+                                     const glm::dvec3& d, double tMin, double tMax);
     const MeshData& meshData(uint32_t mesh) const { return meshes_[mesh]; }
 
 private:
@@ -162,7 +189,8 @@ private:
 
     const Scene& scene_;
     std::vector<glm::dmat4> worldToObject_;
-    std::vector<double> objectSize_;  // |translation| + largest scale: the magnitude of its numbers
+    // |translation| + largest scale: the magnitude of its numbers
+    std::vector<double> objectSize_;
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
     std::vector<double> sky_;  // linear RGB
 };
@@ -172,18 +200,21 @@ private:
 double referenceFresnel(int mode, double f0, double cosI, double n1, double n2);
 
 // Roots t0 <= t1 of |o + t d| = 1, in double (the reference's own form).
-bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0, double& t1);
+bool referenceUnitSphere(const glm::dvec3& o, const glm::dvec3& d, double& t0,
+                         double& t1);
 
 struct ImageError {
     double rmse = 0;            // linear values, over all pixels and RGB channels
     double maxAbs = 0;          // largest linear difference
-    double fracOver1_255 = 0;   // share of pixels whose display value differs by more than 1/255
+    // share of pixels whose display value differs by more than 1/255
+    double fracOver1_255 = 0;
     double psnrDb = 0;          // of the display values
     uint64_t nonFinite = 0;     // NaN or Inf pixels in the tested image
 };
 
 // Compares `test` against `reference`; writes a heat map (black: equal,
 // red to yellow to white: up to 8/255 of display difference) when asked.
-ImageError compareImages(const FloatImage& test, const FloatImage& reference, FloatImage* heatMap);
+ImageError compareImages(const FloatImage& test, const FloatImage& reference,
+                         FloatImage* heatMap);
 
 }  // namespace rg

@@ -9,16 +9,19 @@
 
 namespace rg {
 
-uint32_t findMemoryType(const Gpu& gpu, uint32_t typeBits, VkMemoryPropertyFlags properties) {
+uint32_t findMemoryType(const Gpu& gpu, uint32_t typeBits,
+                        VkMemoryPropertyFlags properties) {
     VkPhysicalDeviceMemoryProperties memory;
     vkGetPhysicalDeviceMemoryProperties(gpu.physical.handle, &memory);
     for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
-        if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & properties) == properties) return i;
+        if ((typeBits & (1u << i)) &&
+            (memory.memoryTypes[i].propertyFlags & properties) == properties)
+            return i;
     throw std::runtime_error("no memory type with the requested properties");
 }
 
-Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, VkBufferUsageFlags usage,
-                    VkMemoryPropertyFlags properties) {
+Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size,
+                    VkBufferUsageFlags usage, VkMemoryPropertyFlags properties) {
     Buffer buffer{.size = size};
     VkBufferCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
@@ -47,9 +50,12 @@ Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, 
     VK_CHECK(vkAllocateMemory(gpu.device, &allocate, nullptr, &buffer.memory));
     VK_CHECK(vkBindBufferMemory(gpu.device, buffer.handle, buffer.memory, 0));
     if (properties & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
-        VK_CHECK(vkMapMemory(gpu.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
+        VK_CHECK(
+            vkMapMemory(gpu.device, buffer.memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
     if (addressable) {
-        VkBufferDeviceAddressInfo address{.sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = buffer.handle};
+        VkBufferDeviceAddressInfo address{
+            .sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO,
+            .buffer = buffer.handle};
         buffer.address = vkGetBufferDeviceAddress(gpu.device, &address);
     }
     // [end]
@@ -61,17 +67,21 @@ Buffer createBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, 
     return buffer;
 }
 
-Buffer createHostBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size, VkBufferUsageFlags usage) {
-    return createBuffer(gpu, deletion, size, usage,
-                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+Buffer createHostBuffer(const Gpu& gpu, DeletionQueue& deletion, VkDeviceSize size,
+                        VkBufferUsageFlags usage) {
+    return createBuffer(
+        gpu, deletion, size, usage,
+        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 }
 
-Buffer createDeviceBuffer(const Gpu& gpu, DeletionQueue& deletion, const void* data, VkDeviceSize size,
-                          VkBufferUsageFlags usage) {
-    Buffer buffer = createBuffer(gpu, deletion, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+Buffer createDeviceBuffer(const Gpu& gpu, DeletionQueue& deletion, const void* data,
+                          VkDeviceSize size, VkBufferUsageFlags usage) {
+    Buffer buffer =
+        createBuffer(gpu, deletion, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     DeletionQueue staging;  // freed when this function returns, after the copy finished
-    Buffer upload = createHostBuffer(gpu, staging, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    Buffer upload =
+        createHostBuffer(gpu, staging, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     std::memcpy(upload.mapped, data, size);
     submitOnce(gpu, [&](VkCommandBuffer cmd) {
         VkBufferCopy region{.size = size};
@@ -80,8 +90,8 @@ Buffer createDeviceBuffer(const Gpu& gpu, DeletionQueue& deletion, const void* d
     return buffer;
 }
 
-Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width, uint32_t height, VkFormat format,
-                    VkImageUsageFlags usage) {
+Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
+                    uint32_t height, VkFormat format, VkImageUsageFlags usage) {
     Image image{.format = format, .extent = {width, height}};
     VkImageCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
@@ -102,7 +112,8 @@ Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width, uin
     VkMemoryAllocateInfo allocate{
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = requirements.size,
-        .memoryTypeIndex = findMemoryType(gpu, requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
+        .memoryTypeIndex = findMemoryType(gpu, requirements.memoryTypeBits,
+                                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
     };
     VK_CHECK(vkAllocateMemory(gpu.device, &allocate, nullptr, &image.memory));
     VK_CHECK(vkBindImageMemory(gpu.device, image.handle, image.memory, 0));
@@ -155,8 +166,9 @@ void submitOnce(const Gpu& gpu, const std::function<void(VkCommandBuffer)>& reco
     VK_CHECK(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX));
 }
 
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout, VkImageLayout newLayout,
-                  VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
+                  VkImageLayout newLayout, VkPipelineStageFlags srcStage,
+                  VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                   VkAccessFlags dstAccess) {
     VkImageMemoryBarrier barrier{
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
@@ -178,9 +190,12 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout, V
                          1, &barrier);    // this image
 }
 
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
-                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
-    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = srcAccess, .dstAccessMask = dstAccess};
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage,
+                   VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dstAccess) {
+    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                            .srcAccessMask = srcAccess,
+                            .dstAccessMask = dstAccess};
     vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
@@ -188,14 +203,19 @@ std::filesystem::path executableDir() {
     return std::filesystem::read_symlink("/proc/self/exe").parent_path();
 }
 
-VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion, const std::string& relative,
-                          const std::string& dir) {
-    std::filesystem::path path = (dir.empty() ? executableDir() / "shaders" : std::filesystem::path(dir)) / (relative + ".spv");
+VkShaderModule loadShader(const Gpu& gpu, DeletionQueue& deletion,
+                          const std::string& relative, const std::string& dir) {
+    std::filesystem::path path =
+        (dir.empty() ? executableDir() / "shaders" : std::filesystem::path(dir)) /
+        (relative + ".spv");
     std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file) throw std::runtime_error("cannot open shader " + path.string() + " (was it built?)");
+    if (!file)
+        throw std::runtime_error("cannot open shader " + path.string() +
+                                 " (was it built?)");
     std::vector<uint32_t> code(static_cast<size_t>(file.tellg()) / 4);
     file.seekg(0);
-    file.read(reinterpret_cast<char*>(code.data()), static_cast<std::streamsize>(code.size() * 4));
+    file.read(reinterpret_cast<char*>(code.data()),
+              static_cast<std::streamsize>(code.size() * 4));
     VkShaderModuleCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
         .codeSize = code.size() * 4,

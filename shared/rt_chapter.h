@@ -15,13 +15,19 @@ struct RtChapterSettings {
     int samplesPerHit = 1;
     int pattern = 0;
     int fresnelMode = 0;
-    float epsilon = 0;  // > 0: a fixed offset for secondary rays (chapter 06's experiment)
+    // > 0: a fixed offset for secondary rays (chapter 06's experiment)
+    float epsilon = 0;
     bool accumulate = false;   // chapter 11: average frames progressively
-    int referenceSamples = 0;  // chapter 11: samples per rough hit in the converged CPU reference
-    int sphereMesh = 0;        // > 0: spheres as icospheres of this subdivision level (performance.md)
-    float wavelength = 0;  // chapter 13: >= 380, every path at this wavelength (nm); else one drawn per path
-    int launches = -1;  // chapter 10's --launches: 0 auto, 1 one, 2 two (two_launches.h); -1: one, no choice
-    float exposure = 0;  // --exposure, in stops: the image is the radiance times 2^exposure
+    // chapter 11: samples per rough hit in the converged CPU reference
+    int referenceSamples = 0;
+    // > 0: spheres as icospheres of this subdivision level (performance.md)
+    int sphereMesh = 0;
+    // chapter 13: >= 380, every path at this wavelength (nm); else one drawn per path
+    float wavelength = 0;
+    // chapter 10's --launches: 0 auto, 1 one, 2 two (two_launches.h); -1: one, no choice
+    int launches = -1;
+    // --exposure, in stops: the image is the radiance times 2^exposure
+    float exposure = 0;
 };
 
 struct RtChapter {
@@ -29,9 +35,11 @@ struct RtChapter {
     std::string description;  // for --help
     std::string title;        // the window's title
     ReferenceStage stage;     // what the CPU reference renders
-    std::string raygenFolder; // the ray generation shader's folder if not `name`'s (chapter 12 uses 11's)
+    // the ray generation shader's folder if not `name`'s (chapter 12 uses 11's)
+    std::string raygenFolder;
     bool meshes = false;      // chapter 12 on: scenes may hold triangle meshes
-    std::string scene = "default";  // the scene without --scene: bin/assets/scenes/<scene>.json
+    // the scene without --scene: bin/assets/scenes/<scene>.json
+    std::string scene = "default";
     // Declares the chapter's own parameters (chapter 06: --fixed-epsilon,
     // ...): each is a command-line option and a control in the overlay.
     std::function<void(Params&, RtChapterSettings&)> options;

@@ -8,11 +8,13 @@
 namespace rg {
 
 // [region create_pipeline]
-RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
-                            uint32_t pushConstantBytes, const RtShaders& shaders, uint32_t maxRecursion) {
+RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
+                            VkDescriptorSetLayout setLayout, uint32_t pushConstantBytes,
+                            const RtShaders& shaders, uint32_t maxRecursion) {
     RtPipeline p;
     p.maxRecursion = maxRecursion;
-    p.layout = createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
+    p.layout =
+        createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
     // Every stage of the pipeline, and the groups that point into that list:
     // group 0 raygen, then the miss groups, then the hit groups (the SBT's order).
@@ -26,35 +28,46 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
         return uint32_t(stages.size() - 1);
     };
     auto general = [&](uint32_t stage) {
-        groups.push_back({.sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
-                          .type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR,
-                          .generalShader = stage,
-                          .closestHitShader = VK_SHADER_UNUSED_KHR,
-                          .anyHitShader = VK_SHADER_UNUSED_KHR,
-                          .intersectionShader = VK_SHADER_UNUSED_KHR});
+        groups.push_back(
+            {.sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
+             .type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR,
+             .generalShader = stage,
+             .closestHitShader = VK_SHADER_UNUSED_KHR,
+             .anyHitShader = VK_SHADER_UNUSED_KHR,
+             .intersectionShader = VK_SHADER_UNUSED_KHR});
     };
     // Specialization: the driver compiles the ray generation shader with
     // constants 0 and 1 fixed, so branches on them cost nothing (and no registers).
     uint32_t constants[2] = {shaders.raygenConstant, shaders.raygenAverages};
-    VkSpecializationMapEntry entries[2] = {{.constantID = 0, .offset = 0, .size = sizeof(uint32_t)},
-                                           {.constantID = 1, .offset = sizeof(uint32_t), .size = sizeof(uint32_t)}};
-    VkSpecializationInfo specialization{.mapEntryCount = 2, .pMapEntries = entries, .dataSize = sizeof constants,
+    VkSpecializationMapEntry entries[2] = {
+        {.constantID = 0, .offset = 0, .size = sizeof(uint32_t)},
+        {.constantID = 1, .offset = sizeof(uint32_t), .size = sizeof(uint32_t)}};
+    VkSpecializationInfo specialization{.mapEntryCount = 2,
+                                        .pMapEntries = entries,
+                                        .dataSize = sizeof constants,
                                         .pData = constants};
     general(addStage(VK_SHADER_STAGE_RAYGEN_BIT_KHR, shaders.raygen));
     stages.back().pSpecializationInfo = &specialization;
-    for (const auto& miss : shaders.miss) general(addStage(VK_SHADER_STAGE_MISS_BIT_KHR, miss));
+    for (const auto& miss : shaders.miss)
+        general(addStage(VK_SHADER_STAGE_MISS_BIT_KHR, miss));
     for (const auto& hit : shaders.hitGroups) {
-        uint32_t chit = hit.closestHit.empty() ? VK_SHADER_UNUSED_KHR
-                                               : addStage(VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR, hit.closestHit);
-        uint32_t rint = hit.intersection.empty() ? VK_SHADER_UNUSED_KHR
-                                                 : addStage(VK_SHADER_STAGE_INTERSECTION_BIT_KHR, hit.intersection);
-        groups.push_back({.sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
-                          .type = hit.intersection.empty() ? VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR
-                                                           : VK_RAY_TRACING_SHADER_GROUP_TYPE_PROCEDURAL_HIT_GROUP_KHR,
-                          .generalShader = VK_SHADER_UNUSED_KHR,
-                          .closestHitShader = chit,
-                          .anyHitShader = VK_SHADER_UNUSED_KHR,
-                          .intersectionShader = rint});
+        uint32_t chit =
+            hit.closestHit.empty()
+                ? VK_SHADER_UNUSED_KHR
+                : addStage(VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR, hit.closestHit);
+        uint32_t rint =
+            hit.intersection.empty()
+                ? VK_SHADER_UNUSED_KHR
+                : addStage(VK_SHADER_STAGE_INTERSECTION_BIT_KHR, hit.intersection);
+        groups.push_back(
+            {.sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
+             .type = hit.intersection.empty()
+                         ? VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR
+                         : VK_RAY_TRACING_SHADER_GROUP_TYPE_PROCEDURAL_HIT_GROUP_KHR,
+             .generalShader = VK_SHADER_UNUSED_KHR,
+             .closestHitShader = chit,
+             .anyHitShader = VK_SHADER_UNUSED_KHR,
+             .intersectionShader = rint});
     }
     VkRayTracingPipelineCreateInfoKHR info{
         .sType = VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR,
@@ -65,7 +78,8 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
         .maxPipelineRayRecursionDepth = maxRecursion,  // 1: only raygen traces
         .layout = p.layout,
     };
-    VK_CHECK(vkCreateRayTracingPipelinesKHR(gpu.device, VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
+    VK_CHECK(vkCreateRayTracingPipelinesKHR(gpu.device, VK_NULL_HANDLE, VK_NULL_HANDLE, 1,
+                                            &info, nullptr, &p.pipeline));
     VkDevice device = gpu.device;
     VkPipeline pipeline = p.pipeline;
     deletion.push([device, pipeline] { vkDestroyPipeline(device, pipeline, nullptr); });
@@ -75,28 +89,37 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
     // The SBT: the driver's opaque handle for each group, copied into a
     // buffer in the layout of shared/sbt.h.
     const auto& props = gpu.physical.rayTracing;
-    uint32_t missCount = uint32_t(shaders.miss.size()), hitCount = uint32_t(shaders.hitGroups.size());
-    p.sbtLayout = computeSbtLayout(props.shaderGroupHandleSize, props.shaderGroupHandleAlignment,
-                                   props.shaderGroupBaseAlignment, props.maxShaderGroupStride, missCount, hitCount);
+    uint32_t missCount = uint32_t(shaders.miss.size()),
+             hitCount = uint32_t(shaders.hitGroups.size());
+    p.sbtLayout = computeSbtLayout(
+        props.shaderGroupHandleSize, props.shaderGroupHandleAlignment,
+        props.shaderGroupBaseAlignment, props.maxShaderGroupStride, missCount, hitCount);
     std::vector<uint8_t> handles(size_t(groups.size()) * props.shaderGroupHandleSize);
-    VK_CHECK(vkGetRayTracingShaderGroupHandlesKHR(gpu.device, p.pipeline, 0, uint32_t(groups.size()), handles.size(),
+    VK_CHECK(vkGetRayTracingShaderGroupHandlesKHR(gpu.device, p.pipeline, 0,
+                                                  uint32_t(groups.size()), handles.size(),
                                                   handles.data()));
     std::vector<uint8_t> table(p.sbtLayout.totalSize, 0);
     auto put = [&](uint32_t group, uint64_t offset) {
-        std::memcpy(&table[offset], &handles[size_t(group) * props.shaderGroupHandleSize], props.shaderGroupHandleSize);
+        std::memcpy(&table[offset], &handles[size_t(group) * props.shaderGroupHandleSize],
+                    props.shaderGroupHandleSize);
     };
     put(0, p.sbtLayout.raygen.offset);
-    for (uint32_t i = 0; i < missCount; ++i) put(1 + i, p.sbtLayout.miss.offset + i * p.sbtLayout.miss.stride);
+    for (uint32_t i = 0; i < missCount; ++i)
+        put(1 + i, p.sbtLayout.miss.offset + i * p.sbtLayout.miss.stride);
     for (uint32_t i = 0; i < hitCount; ++i)
         put(1 + missCount + i, p.sbtLayout.hit.offset + i * p.sbtLayout.hit.stride);
 
     // Over-allocate by one base alignment and start the table at an aligned address.
-    p.sbt = createHostBuffer(gpu, deletion, p.sbtLayout.totalSize + props.shaderGroupBaseAlignment,
-                             VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    p.sbt = createHostBuffer(gpu, deletion,
+                             p.sbtLayout.totalSize + props.shaderGroupBaseAlignment,
+                             VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR |
+                                 VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
     VkDeviceAddress base = alignUp(p.sbt.address, props.shaderGroupBaseAlignment);
-    std::memcpy(static_cast<uint8_t*>(p.sbt.mapped) + (base - p.sbt.address), table.data(), table.size());
+    std::memcpy(static_cast<uint8_t*>(p.sbt.mapped) + (base - p.sbt.address),
+                table.data(), table.size());
     auto region = [&](const SbtRegion& r) {
-        return VkStridedDeviceAddressRegionKHR{.deviceAddress = base + r.offset, .stride = r.stride, .size = r.size};
+        return VkStridedDeviceAddressRegionKHR{
+            .deviceAddress = base + r.offset, .stride = r.stride, .size = r.size};
     };
     p.raygen = region(p.sbtLayout.raygen);
     p.miss = region(p.sbtLayout.miss);
@@ -106,10 +129,11 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescripto
 }
 
 // [region trace_rays]
-void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set, const void* push, uint32_t pushBytes,
-                 uint32_t width, uint32_t height) {
+void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set,
+                 const void* push, uint32_t pushBytes, uint32_t width, uint32_t height) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout, 0, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout, 0, 1,
+                            &set, 0, nullptr);
     vkCmdPushConstants(cmd, p.layout, kRtPushStages, 0, pushBytes, push);
     vkCmdTraceRaysKHR(cmd,
                       &p.raygen,    // one record: the ray generation shader

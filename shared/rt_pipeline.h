@@ -18,13 +18,15 @@ struct HitGroup {
 
 struct RtShaders {
     std::string raygen;
-    uint32_t raygenConstant = 0;  // the ray generation shader's specialization constant 0 (chapter 10: its launch)
+    // the ray generation shader's specialization constant 0 (chapter 10: its launch)
+    uint32_t raygenConstant = 0;
     // Constant 1, kAverages (rt_bindings.glsl): 0 for a run that never
     // averages frames, whose shader then holds no jitter and no running mean.
     uint32_t raygenAverages = 1;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
-    std::string spirvDir;  // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder
+    // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder
+    std::string spirvDir;
 };
 
 struct RtPipeline {
@@ -37,17 +39,18 @@ struct RtPipeline {
 };
 
 // maxRecursion: rays traced from raygen only need 1 (bounces loop in raygen).
-RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion, VkDescriptorSetLayout setLayout,
-                            uint32_t pushConstantBytes, const RtShaders& shaders, uint32_t maxRecursion = 1);
+RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
+                            VkDescriptorSetLayout setLayout, uint32_t pushConstantBytes,
+                            const RtShaders& shaders, uint32_t maxRecursion = 1);
 
 // The stages that read the push constants (gpu::RtPush).
-constexpr VkShaderStageFlags kRtPushStages = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
-                                             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
-                                             VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
+constexpr VkShaderStageFlags kRtPushStages =
+    VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
+    VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
 
 // Binds the pipeline and its set, pushes constants, traces one ray
 // generation invocation per pixel.
-void recordTrace(VkCommandBuffer cmd, const RtPipeline& pipeline, VkDescriptorSet set, const void* push,
-                 uint32_t pushBytes, uint32_t width, uint32_t height);
+void recordTrace(VkCommandBuffer cmd, const RtPipeline& pipeline, VkDescriptorSet set,
+                 const void* push, uint32_t pushBytes, uint32_t width, uint32_t height);
 
 }  // namespace rg

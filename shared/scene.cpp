@@ -25,7 +25,8 @@
 namespace rg {
 
 double largestStretch(const glm::dmat4& m) {
-    return std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])), glm::length(glm::dvec3(m[2]))});
+    return std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                     glm::length(glm::dvec3(m[2]))});
 }
 
 namespace {
@@ -51,16 +52,19 @@ public:
     template <class Exception>
     bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
         errorPosition = position;
-        errorReason = e.what();  // "[json.exception.parse_error.101] parse error at line 1, column 5: why"
+        // "[json.exception.parse_error.101] parse error at line 1, column 5: why"
+        errorReason = e.what();
         size_t start = errorReason.find("] ");
         if (start != std::string::npos) errorReason.erase(0, start + 2);
         size_t colon = errorReason.find(": ");
-        if (errorReason.rfind("parse error", 0) == 0 && colon != std::string::npos) errorReason.erase(0, colon + 2);
+        if (errorReason.rfind("parse error", 0) == 0 && colon != std::string::npos)
+            errorReason.erase(0, colon + 2);
         return json_sax_dom_parser::parse_error(position, token, e);
     }
 
     bool start_object(std::size_t n) {
-        if (capturing_) return inData(NAN), ++nested_, true;  // an element that is not a number
+        // an element that is not a number
+        if (capturing_) return inData(NAN), ++nested_, true;
         afterDataKey_ = false;
         if (++depth_ > levels_.size()) levels_.emplace_back();
         levels_[depth_ - 1].keys.clear();
@@ -76,10 +80,13 @@ public:
         if (capturing_) return true;
         Level& level = levels_[depth_ - 1];
         bool seen = level.many ? !level.many->insert(k).second
-                               : std::find(level.keys.begin(), level.keys.end(), k) != level.keys.end();
+                               : std::find(level.keys.begin(), level.keys.end(), k) !=
+                                     level.keys.end();
         if (!level.many) {
             level.keys.push_back(k);
-            if (level.keys.size() > 32) level.many = std::make_unique<std::set<std::string>>(level.keys.begin(), level.keys.end());
+            if (level.keys.size() > 32)
+                level.many = std::make_unique<std::set<std::string>>(level.keys.begin(),
+                                                                     level.keys.end());
         }
         if (seen && duplicate.empty()) duplicate = k;
         afterDataKey_ = k == "data";
@@ -87,7 +94,8 @@ public:
     }
     bool start_array(std::size_t n) {
         if (capturing_) return inData(NAN), ++nested_, true;
-        if (!std::exchange(afterDataKey_, false)) return json_sax_dom_parser::start_array(n);
+        if (!std::exchange(afterDataKey_, false))
+            return json_sax_dom_parser::start_array(n);
         capturing_ = true;
         bytes_.clear();
         return true;
@@ -100,9 +108,15 @@ public:
         bytes_ = {};
         return json_sax_dom_parser::binary(block);
     }
-    bool number_integer(json::number_integer_t v) { return inData(double(v)) || json_sax_dom_parser::number_integer(v); }
-    bool number_unsigned(json::number_unsigned_t v) { return inData(double(v)) || json_sax_dom_parser::number_unsigned(v); }
-    bool number_float(double v, const std::string& text) { return inData(v) || json_sax_dom_parser::number_float(v, text); }
+    bool number_integer(json::number_integer_t v) {
+        return inData(double(v)) || json_sax_dom_parser::number_integer(v);
+    }
+    bool number_unsigned(json::number_unsigned_t v) {
+        return inData(double(v)) || json_sax_dom_parser::number_unsigned(v);
+    }
+    bool number_float(double v, const std::string& text) {
+        return inData(v) || json_sax_dom_parser::number_float(v, text);
+    }
     bool string(std::string& v) { return inData(NAN) || json_sax_dom_parser::string(v); }
     bool boolean(bool v) { return inData(NAN) || json_sax_dom_parser::boolean(v); }
     bool null() { return inData(NAN) || json_sax_dom_parser::null(); }
@@ -128,7 +142,8 @@ private:
     size_t depth_ = 0;
     bool afterDataKey_ = false, capturing_ = false;
     int nested_ = 0;  // containers open inside the captured array
-    std::vector<std::uint8_t> bytes_;  // the captured doubles, as the binary value holds them
+    // the captured doubles, as the binary value holds them
+    std::vector<std::uint8_t> bytes_;
 };
 
 // "line:column" (both from 1) of the character `position` counts up to.
@@ -136,7 +151,8 @@ std::string lineAndColumn(const std::string& text, size_t position) {
     size_t end = std::min(position > 0 ? position - 1 : 0, text.size());
     size_t line = 1 + size_t(std::count(text.begin(), text.begin() + long(end), '\n'));
     size_t lineStart = text.rfind('\n', end > 0 ? end - 1 : 0);
-    size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
+    size_t column =
+        lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
     return std::to_string(line) + ":" + std::to_string(column);
 }
 
@@ -149,13 +165,15 @@ public:
         throw InputError(file_ + ": " + key + ": " + what);
     }
 
-    void onlyKeys(const json& j, const std::string& where, const std::set<std::string>& allowed) const {
+    void onlyKeys(const json& j, const std::string& where,
+                  const std::set<std::string>& allowed) const {
         if (!j.is_object()) fail(where, "must be an object");
         for (auto it = j.begin(); it != j.end(); ++it)
             if (!allowed.count(it.key())) {
                 std::string list;
                 for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-                fail(where.empty() ? it.key() : where + "." + it.key(), "unknown key (known: " + list + ")");
+                fail(where.empty() ? it.key() : where + "." + it.key(),
+                     "unknown key (known: " + list + ")");
             }
     }
 
@@ -163,11 +181,13 @@ public:
         if (!j.is_number()) fail(key, "must be a number");
         double v = j.get<double>();
         if (!std::isfinite(v) || v < lo || v > hi)
-            fail(key, "value " + j.dump() + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+            fail(key,
+                 "value " + j.dump() + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
         return v;
     }
 
-    glm::dvec3 vec3(const json& j, const std::string& key, double lo = -1e30, double hi = 1e30) const {
+    glm::dvec3 vec3(const json& j, const std::string& key, double lo = -1e30,
+                    double hi = 1e30) const {
         if (j.is_number()) {  // a single number means (v, v, v)
             double v = number(j, key, lo, hi);
             return {v, v, v};
@@ -201,14 +221,18 @@ constexpr double kHuge = 1e30;
 glm::dmat4 readTransform(const Reader& r, const json& j, const std::string& key) {
     r.onlyKeys(j, key, {"translate", "rotate_deg", "scale"});
     glm::dmat4 m(1.0);
-    if (j.contains("translate")) m = glm::translate(m, r.vec3(j["translate"], key + ".translate"));
-    if (j.contains("rotate_deg")) {  // Euler angles about x, then y, then z (applied z last)
-        glm::dvec3 a = glm::radians(r.vec3(j["rotate_deg"], key + ".rotate_deg", -3600, 3600));
+    if (j.contains("translate"))
+        m = glm::translate(m, r.vec3(j["translate"], key + ".translate"));
+    // Euler angles about x, then y, then z (applied z last)
+    if (j.contains("rotate_deg")) {
+        glm::dvec3 a =
+            glm::radians(r.vec3(j["rotate_deg"], key + ".rotate_deg", -3600, 3600));
         m = glm::rotate(m, a.z, {0, 0, 1});
         m = glm::rotate(m, a.y, {0, 1, 0});
         m = glm::rotate(m, a.x, {1, 0, 0});
     }
-    if (j.contains("scale")) m = glm::scale(m, r.vec3(j["scale"], key + ".scale", 1e-12, kHuge));
+    if (j.contains("scale"))
+        m = glm::scale(m, r.vec3(j["scale"], key + ".scale", 1e-12, kHuge));
     return m;
 }
 
@@ -221,7 +245,8 @@ glm::dmat4 readTransform(const Reader& r, const json& j, const std::string& key)
 // surface's rounding grows with its own size and distance, so the value
 // depends on the surfaces at the eye alone, not on the rest of the scene.
 double eyeTmin(const Scene& s) {
-    constexpr double kRounding = 8.0 / 16777216.0;   // 8 units of float's relative rounding, 2^-24
+    // 8 units of float's relative rounding, 2^-24
+    constexpr double kRounding = 8.0 / 16777216.0;
     constexpr double kReach = 1.0 / 16384.0;          // 2^-14 of the surface's size
     double tMin = 0;
     for (const Object& o : s.objects) {
@@ -229,12 +254,17 @@ double eyeTmin(const Scene& s) {
         const glm::dmat4& m = o.transform;
         double scale = largestStretch(m);
         double size = glm::length(glm::dvec3(m[3]) - s.camera.position) + scale;
-        glm::dvec3 q = glm::dvec3(glm::inverse(m) * glm::dvec4(s.camera.position, 1.0));  // the eye, in object space
-        double rounding = kRounding * size / scale;                                       // in object units
-        bool onSurface = o.type == ShapeType::Sphere ? std::abs(glm::length(q) - 1.0) <= rounding
-                         : o.type == ShapeType::Quad
-                             ? std::abs(q.y) <= rounding && std::abs(q.x) <= 1 + rounding && std::abs(q.z) <= 1 + rounding
-                             : false;  // a mesh: an eye on one of its triangles is not looked for
+        // the eye, in object space
+        glm::dvec3 q = glm::dvec3(glm::inverse(m) * glm::dvec4(s.camera.position, 1.0));
+        // in object units
+        double rounding = kRounding * size / scale;
+        bool onSurface =
+            o.type == ShapeType::Sphere ? std::abs(glm::length(q) - 1.0) <= rounding
+            : o.type == ShapeType::Quad
+                ? std::abs(q.y) <= rounding && std::abs(q.x) <= 1 + rounding &&
+                      std::abs(q.z) <= 1 + rounding
+                // a mesh: an eye on one of its triangles is not looked for
+                : false;
         if (onSurface) tMin = std::max(tMin, kReach * size);
     }
     return tMin;
@@ -252,12 +282,15 @@ glm::dmat4 sphereTransform(const glm::dvec3& center, double radius) {
 // a million spheres as one flat array of numbers (StrictJson's block) load
 // three times as fast as a million JSON objects, in a third of the memory.
 // The checks are those of single spheres; a key is built only to name an error.
-void readSphereList(const Reader& r, const json& o, const std::string& key, uint32_t material,
-                    std::vector<Object>& objects) {
+void readSphereList(const Reader& r, const json& o, const std::string& key,
+                    uint32_t material, std::vector<Object>& objects) {
     const json* data = o.contains("data") ? &o["data"] : nullptr;
-    size_t count = data && data->is_binary() ? data->get_binary().size() / sizeof(double) : 0;
-    if (count == 0 || count % 4 != 0) r.fail(key + ".data", "must be an array of x, y, z, radius: 4 numbers a sphere");
-    const std::uint8_t* numbers = data->get_binary().data();  // StrictJson's block of doubles
+    size_t count =
+        data && data->is_binary() ? data->get_binary().size() / sizeof(double) : 0;
+    if (count == 0 || count % 4 != 0)
+        r.fail(key + ".data", "must be an array of x, y, z, radius: 4 numbers a sphere");
+    // StrictJson's block of doubles
+    const std::uint8_t* numbers = data->get_binary().data();
     auto value = [&](size_t k, double lo, double hi) {
         double d;
         std::memcpy(&d, numbers + k * sizeof(double), sizeof d);
@@ -269,8 +302,10 @@ void readSphereList(const Reader& r, const json& o, const std::string& key, uint
         return d;
     };
     for (size_t k = 0; k < count; k += 4) {
-        Object& sphere = objects.emplace_back(Object{.type = ShapeType::Sphere, .material = material});
-        sphere.center = {value(k, -1e30, 1e30), value(k + 1, -1e30, 1e30), value(k + 2, -1e30, 1e30)};
+        Object& sphere =
+            objects.emplace_back(Object{.type = ShapeType::Sphere, .material = material});
+        sphere.center = {value(k, -1e30, 1e30), value(k + 1, -1e30, 1e30),
+                         value(k + 2, -1e30, 1e30)};
         sphere.radius = value(k + 3, 1e-12, kHuge);
         sphere.transform = sphereTransform(sphere.center, sphere.radius);
     }
@@ -278,15 +313,18 @@ void readSphereList(const Reader& r, const json& o, const std::string& key, uint
 
 // A file a scene names: relative to the scene file first, then to
 // bin/assets/; it must be a regular file.
-std::string findInput(const Reader& r, const std::string& scenePath, const std::filesystem::path& name,
-                      const std::string& key) {
-    std::filesystem::path besideScene = std::filesystem::path(scenePath).parent_path() / name;
+std::string findInput(const Reader& r, const std::string& scenePath,
+                      const std::filesystem::path& name, const std::string& key) {
+    std::filesystem::path besideScene =
+        std::filesystem::path(scenePath).parent_path() / name;
     std::filesystem::path inAssets = executableDir() / "assets" / name;
     std::error_code error;  // a loop of links: no exception, the check below names it
     std::string found;
-    if (std::filesystem::symlink_status(besideScene, error).type() != std::filesystem::file_type::not_found)
+    if (std::filesystem::symlink_status(besideScene, error).type() !=
+        std::filesystem::file_type::not_found)
         found = besideScene.string();
-    else if (std::filesystem::symlink_status(inAssets, error).type() != std::filesystem::file_type::not_found)
+    else if (std::filesystem::symlink_status(inAssets, error).type() !=
+             std::filesystem::file_type::not_found)
         found = inAssets.string();
     else
         r.fail(key, "no such file: " + name.string());
@@ -314,8 +352,11 @@ Material materialFromFile(const FileMaterial& f) {
     m.transmission = f.transmission;
     m.ior = f.ior;
     m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
-    m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;  // rough reflection only for metal (ch 11)
-    if (f.attenuationDistance > 0) m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);  // ch 13
+    // rough reflection only for metal (ch 11)
+    m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;
+    // ch 13
+    if (f.attenuationDistance > 0)
+        m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);
     m.dispersion = f.dispersion;  // ch 13
     return m;
 }
@@ -325,9 +366,11 @@ Material materialFromFile(const FileMaterial& f) {
 // Scene::meshes once, and every placement adds one object per part.
 class MeshFiles {
 public:
-    MeshFiles(const Reader& r, const std::string& scenePath, Scene& scene) : r_(r), path_(scenePath), scene_(scene) {}
+    MeshFiles(const Reader& r, const std::string& scenePath, Scene& scene)
+        : r_(r), path_(scenePath), scene_(scene) {}
 
-    void place(const std::string& name, const std::string& key, const glm::dmat4& transform, bool moving,
+    void place(const std::string& name, const std::string& key,
+               const glm::dmat4& transform, bool moving,
                std::optional<uint32_t> material) {
         std::string file = findInput(r_, path_, name, key + ".file");
         auto it = loaded_.find(file);
@@ -335,14 +378,23 @@ public:
         const Loaded& l = it->second;
         for (const MeshPart& part : l.parts) {
             if (!material && part.material < 0)
-                r_.fail(key + ".material", "missing: " + name + " names no material for its mesh");
-            Object o{.type = ShapeType::Mesh, .material = material ? *material : l.materials[part.material],
-                     .moving = moving, .transform = transform * part.transform, .mesh = l.firstMesh + part.mesh};
+                r_.fail(key + ".material",
+                        "missing: " + name + " names no material for its mesh");
+            Object o{.type = ShapeType::Mesh,
+                     .material = material ? *material : l.materials[part.material],
+                     .moving = moving,
+                     .transform = transform * part.transform,
+                     .mesh = l.firstMesh + part.mesh};
             const Mesh& mesh = *scene_.meshes[o.mesh];
-            bool open = scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0;
-            if (open && warnedOpen_.insert(o.mesh).second)  // once per mesh, however often it is placed
-                std::fprintf(stderr, "%s: %s: warning: %s is transmissive but not closed: %zu open edges "
-                             "(glass needs a closed surface)\n", path_.c_str(), key.c_str(), mesh.name.c_str(), mesh.openEdges);
+            bool open =
+                scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0;
+            // once per mesh, however often it is placed
+            if (open && warnedOpen_.insert(o.mesh).second)
+                std::fprintf(
+                    stderr,
+                    "%s: %s: warning: %s is transmissive but not closed: %zu open edges "
+                    "(glass needs a closed surface)\n",
+                    path_.c_str(), key.c_str(), mesh.name.c_str(), mesh.openEdges);
             scene_.objects.push_back(o);
         }
     }
@@ -362,21 +414,26 @@ private:
         }
         Loaded l{.firstMesh = uint32_t(scene_.meshes.size()), .parts = mf.parts};
         int firstTexture = int(scene_.textures.size());
-        for (Texture& t : mf.textures) scene_.textures.push_back(std::make_shared<const Texture>(std::move(t)));
+        for (Texture& t : mf.textures)
+            scene_.textures.push_back(std::make_shared<const Texture>(std::move(t)));
         for (const FileMaterial& f : mf.materials) {
             l.materials.push_back(uint32_t(scene_.materials.size()));
             scene_.materials.push_back(materialFromFile(f));
-            scene_.materials.back().name = std::filesystem::path(file).filename().string() + ": " + f.name;
-            if (f.baseColorTexture >= 0) scene_.materials.back().texture = firstTexture + f.baseColorTexture;
+            scene_.materials.back().name =
+                std::filesystem::path(file).filename().string() + ": " + f.name;
+            if (f.baseColorTexture >= 0)
+                scene_.materials.back().texture = firstTexture + f.baseColorTexture;
         }
         for (Mesh& m : mf.meshes) {
             if (m.degenerate > 0)
-                std::fprintf(stderr, "%s: %s: dropped %zu degenerate triangles\n", path_.c_str(), m.name.c_str(), m.degenerate);
+                std::fprintf(stderr, "%s: %s: dropped %zu degenerate triangles\n",
+                             path_.c_str(), m.name.c_str(), m.degenerate);
             scene_.meshes.push_back(std::make_shared<const Mesh>(std::move(m)));
         }
         if (mf.skippedPrimitives > 0)
-            std::fprintf(stderr, "%s: %s: skipped %zu primitives that are points or lines\n", path_.c_str(), file.c_str(),
-                         mf.skippedPrimitives);
+            std::fprintf(stderr,
+                         "%s: %s: skipped %zu primitives that are points or lines\n",
+                         path_.c_str(), file.c_str(), mf.skippedPrimitives);
         return l;
     }
     const Reader& r_;
@@ -394,9 +451,11 @@ std::string defaultScenePath(const std::string& name) {
 
 Scene loadScene(const std::string& path) {
     Reader r(path);
-    requireRegularFile(path, "--scene");  // a FIFO would block the read, a device never end it
+    // a FIFO would block the read, a device never end it
+    requireRegularFile(path, "--scene");
     std::ifstream file(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    std::string text((std::istreambuf_iterator<char>(file)),
+                     std::istreambuf_iterator<char>());
     if (!file && !file.eof()) throw InputError(path + ": cannot read the scene file");
     // JSON allows a key twice in one object and keeps the last; in a scene
     // file that is a mistake (two "radius" keys), so the parser refuses it.
@@ -408,10 +467,14 @@ Scene loadScene(const std::string& path) {
         throw InputError(path + ": cannot read the scene file (" + e.what() + ")");
     }
     if (strict.is_errored() || j.is_discarded())
-        throw InputError(path + ":" + lineAndColumn(text, strict.errorPosition) + ": not valid JSON: " + strict.errorReason);
+        throw InputError(path + ":" + lineAndColumn(text, strict.errorPosition) +
+                         ": not valid JSON: " + strict.errorReason);
     if (!strict.duplicate.empty())
-        throw InputError(path + ": key \"" + strict.duplicate + "\" appears twice in one object");
-    r.onlyKeys(j, "", {"camera", "sky", "ambient", "lights", "materials", "objects", "scale", "comment"});
+        throw InputError(path + ": key \"" + strict.duplicate +
+                         "\" appears twice in one object");
+    r.onlyKeys(j, "",
+               {"camera", "sky", "ambient", "lights", "materials", "objects", "scale",
+                "comment"});
 
     Scene s;
     s.path = path;
@@ -419,24 +482,31 @@ Scene loadScene(const std::string& path) {
     if (!j.contains("camera")) r.fail("camera", "missing");
     const json& c = j["camera"];
     r.onlyKeys(c, "camera", {"position", "look_at", "up", "fov_y_deg", "medium"});
-    if (c.contains("position")) s.camera.position = r.vec3(c["position"], "camera.position");
+    if (c.contains("position"))
+        s.camera.position = r.vec3(c["position"], "camera.position");
     if (c.contains("look_at")) s.camera.lookAt = r.vec3(c["look_at"], "camera.look_at");
     if (c.contains("up")) s.camera.up = r.vec3(c["up"], "camera.up");
-    if (c.contains("fov_y_deg")) s.camera.fovYDeg = r.number(c["fov_y_deg"], "camera.fov_y_deg", 1, 179);
+    if (c.contains("fov_y_deg"))
+        s.camera.fovYDeg = r.number(c["fov_y_deg"], "camera.fov_y_deg", 1, 179);
     glm::dvec3 forward = s.camera.lookAt - s.camera.position;
-    if (glm::length(forward) <= 0) r.fail("camera.look_at", "must differ from camera.position");
-    if (glm::length(glm::cross(forward, s.camera.up)) <= 1e-12 * glm::length(forward) * glm::length(s.camera.up))
+    if (glm::length(forward) <= 0)
+        r.fail("camera.look_at", "must differ from camera.position");
+    if (glm::length(glm::cross(forward, s.camera.up)) <=
+        1e-12 * glm::length(forward) * glm::length(s.camera.up))
         r.fail("camera.up", "must not be parallel to the viewing direction");
 
     if (j.contains("sky")) {
         const json& k = j["sky"];
         r.onlyKeys(k, "sky", {"image", "top", "horizon", "bottom"});
         if (k.contains("image")) {
-            s.sky.image = findInput(r, path, r.string(k["image"], "sky.image"), "sky.image");
+            s.sky.image =
+                findInput(r, path, r.string(k["image"], "sky.image"), "sky.image");
         }
         if (k.contains("top")) s.sky.top = r.vec3(k["top"], "sky.top", 0, kHuge);
-        if (k.contains("horizon")) s.sky.horizon = r.vec3(k["horizon"], "sky.horizon", 0, kHuge);
-        if (k.contains("bottom")) s.sky.bottom = r.vec3(k["bottom"], "sky.bottom", 0, kHuge);
+        if (k.contains("horizon"))
+            s.sky.horizon = r.vec3(k["horizon"], "sky.horizon", 0, kHuge);
+        if (k.contains("bottom"))
+            s.sky.bottom = r.vec3(k["bottom"], "sky.bottom", 0, kHuge);
     }
     if (j.contains("ambient")) s.ambient = r.vec3(j["ambient"], "ambient", 0, kHuge);
 
@@ -449,58 +519,75 @@ Scene loadScene(const std::string& path) {
             PointLight light;
             if (!l.contains("position")) r.fail(key + ".position", "missing");
             light.position = r.vec3(l["position"], key + ".position");
-            if (l.contains("intensity")) light.intensity = r.vec3(l["intensity"], key + ".intensity", 0, kHuge);
+            if (l.contains("intensity"))
+                light.intensity = r.vec3(l["intensity"], key + ".intensity", 0, kHuge);
             s.lights.push_back(light);
         }
     }
 
     // A scene whose meshes bring their own materials may leave them out.
     const json noMaterials = json::object();
-    if (j.contains("materials") && (!j["materials"].is_object() || j["materials"].empty()))
+    if (j.contains("materials") &&
+        (!j["materials"].is_object() || j["materials"].empty()))
         r.fail("materials", "must be an object with at least one named material");
     const json& materials = j.contains("materials") ? j["materials"] : noMaterials;
     for (auto it = materials.begin(); it != materials.end(); ++it) {
         std::string key = "materials." + it.key();
         const json& m = it.value();
-        r.onlyKeys(m, key, {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior", "f0", "roughness",
-                            "attenuation_color", "attenuation_distance", "priority", "dispersion"});
+        r.onlyKeys(m, key,
+                   {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior",
+                    "f0", "roughness", "attenuation_color", "attenuation_distance",
+                    "priority", "dispersion"});
         Material mat;
         mat.name = it.key();
         if (m.contains("ka")) mat.ka = r.vec3(m["ka"], key + ".ka", 0, 1);
         if (m.contains("kd")) mat.kd = r.vec3(m["kd"], key + ".kd", 0, 1);
         if (m.contains("ks")) mat.ks = r.vec3(m["ks"], key + ".ks", 0, 1);
-        if (m.contains("shininess")) mat.shininess = r.number(m["shininess"], key + ".shininess", 0, 1e6);
-        if (m.contains("reflectivity")) mat.reflectivity = r.number(m["reflectivity"], key + ".reflectivity", 0, 1);
-        if (m.contains("transmission")) mat.transmission = r.number(m["transmission"], key + ".transmission", 0, 1);
+        if (m.contains("shininess"))
+            mat.shininess = r.number(m["shininess"], key + ".shininess", 0, 1e6);
+        if (m.contains("reflectivity"))
+            mat.reflectivity = r.number(m["reflectivity"], key + ".reflectivity", 0, 1);
+        if (m.contains("transmission"))
+            mat.transmission = r.number(m["transmission"], key + ".transmission", 0, 1);
         if (m.contains("ior")) mat.ior = r.number(m["ior"], key + ".ior", 1, 10);
         if (m.contains("f0")) mat.f0 = r.number(m["f0"], key + ".f0", 0, 1);
-        if (m.contains("roughness")) mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
+        if (m.contains("roughness"))
+            mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
         // Chapter 13: the medium inside, as glTF's KHR_materials_volume gives it:
         // white light keeps attenuation_color after attenuation_distance.
         if (m.contains("attenuation_color") != m.contains("attenuation_distance"))
-            r.fail(key + (m.contains("attenuation_color") ? ".attenuation_distance" : ".attenuation_color"),
+            r.fail(key + (m.contains("attenuation_color") ? ".attenuation_distance"
+                                                          : ".attenuation_color"),
                    "missing (attenuation_color and attenuation_distance come together)");
         if (m.contains("attenuation_color")) {
-            glm::dvec3 color = r.vec3(m["attenuation_color"], key + ".attenuation_color", 1e-6, 1);
-            double distance = r.number(m["attenuation_distance"], key + ".attenuation_distance", 1e-12, kHuge);
+            glm::dvec3 color =
+                r.vec3(m["attenuation_color"], key + ".attenuation_color", 1e-6, 1);
+            double distance = r.number(m["attenuation_distance"],
+                                       key + ".attenuation_distance", 1e-12, kHuge);
             mat.absorption = absorptionOf(color, distance);
         }
         if (m.contains("priority")) {
-            if (!m["priority"].is_number_integer()) r.fail(key + ".priority", "must be a whole number");
+            if (!m["priority"].is_number_integer())
+                r.fail(key + ".priority", "must be a whole number");
             mat.priority = int(r.number(m["priority"], key + ".priority", 0, 255));
         }
         // Chapter 13: a glass by name, its index from Sellmeier's equation; or
         // glTF's KHR_materials_dispersion, 20 / Abbe number, about the ior.
         if (m.contains("dispersion") && m["dispersion"].is_string()) {
             static const std::map<std::string, Glass> glasses = {
-                {"bk7", Glass::BK7}, {"fused_silica", Glass::FusedSilica}, {"water", Glass::Water},
+                {"bk7", Glass::BK7},
+                {"fused_silica", Glass::FusedSilica},
+                {"water", Glass::Water},
                 {"diamond", Glass::Diamond}};
             auto glass = glasses.find(m["dispersion"].get<std::string>());
             if (glass == glasses.end())
-                r.fail(key + ".dispersion", "no glass named \"" + m["dispersion"].get<std::string>() +
-                                                "\" (bk7, fused_silica, water, diamond, or 20 / Abbe number)");
+                r.fail(key + ".dispersion",
+                       "no glass named \"" + m["dispersion"].get<std::string>() +
+                           "\" (bk7, fused_silica, water, diamond, or 20 / Abbe number)");
             if (m.contains("ior"))
-                r.fail(key + ".ior", "a named glass's dispersion sets the index; give one or the other");
+                r.fail(
+                    key + ".ior",
+                    "a named glass's dispersion sets the index; give one or the other");
             mat.glass = glass->second;
             mat.ior = glassIndex(mat.glass, 587.5618);  // the helium d line: n_d
         } else if (m.contains("dispersion")) {
@@ -515,42 +602,54 @@ Scene loadScene(const std::string& path) {
             if (s.materials[i].name == name) return uint32_t(i);
         r.fail(key, "no material named \"" + name + "\"");
     };
-    if (j["camera"].contains("medium")) {  // chapter 13: the eye under water, inside glass
+    // chapter 13: the eye under water, inside glass
+    if (j["camera"].contains("medium")) {
         s.cameraMedium = int(materialIndex(j["camera"]["medium"], "camera.medium"));
         if (s.materials[s.cameraMedium].transmission <= 0)
-            r.fail("camera.medium", "must name a material that transmits (transmission > 0): an eye cannot be inside an opaque one");
+            r.fail("camera.medium",
+                   "must name a material that transmits (transmission > 0): an eye "
+                   "cannot be inside an opaque one");
     }
 
     if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
         r.fail("objects", "must be an array with at least one object");
     Progress progress(path, j["objects"].size());  // big scenes, on a terminal only
-    size_t count = 0;  // room for every object at once: a million are not copied as the list grows
+    // room for every object at once: a million are not copied as the list grows
+    size_t count = 0;
     for (const json& o : j["objects"]) {
         const json* data = o.is_object() && o.contains("data") ? &o["data"] : nullptr;
-        count += data && data->is_binary() ? data->get_binary().size() / (4 * sizeof(double)) : 1;
+        count += data && data->is_binary()
+                     ? data->get_binary().size() / (4 * sizeof(double))
+                     : 1;
     }
     s.objects.reserve(count);
     for (size_t i = 0; i < j["objects"].size(); ++i) {
         if (i % 4096 == 0) progress.update(i);
         const json& o = j["objects"][i];
         std::string key = "objects[" + std::to_string(i) + "]";
-        if (!o.is_object() || !o.contains("type")) r.fail(key + ".type", "missing (sphere, quad, spheres or mesh)");
+        if (!o.is_object() || !o.contains("type"))
+            r.fail(key + ".type", "missing (sphere, quad, spheres or mesh)");
         std::string type = r.string(o["type"], key + ".type");
         Object obj;
-        if (!o.contains("material") && type != "mesh") r.fail(key + ".material", "missing");
-        if (type != "mesh") obj.material = materialIndex(o["material"], key + ".material");
+        if (!o.contains("material") && type != "mesh")
+            r.fail(key + ".material", "missing");
+        if (type != "mesh")
+            obj.material = materialIndex(o["material"], key + ".material");
         if (type == "sphere") {
-            r.onlyKeys(o, key, {"type", "material", "center", "radius", "transform", "moving"});
+            r.onlyKeys(o, key,
+                       {"type", "material", "center", "radius", "transform", "moving"});
             obj.type = ShapeType::Sphere;
             if (o.contains("center")) obj.center = r.vec3(o["center"], key + ".center");
             if (!o.contains("radius")) r.fail(key + ".radius", "missing");
             obj.radius = r.number(o["radius"], key + ".radius", 1e-12, kHuge);
             obj.transform = sphereTransform(obj.center, obj.radius);
         } else if (type == "quad") {
-            r.onlyKeys(o, key, {"type", "material", "center", "u", "v", "transform", "moving"});
+            r.onlyKeys(o, key,
+                       {"type", "material", "center", "u", "v", "transform", "moving"});
             obj.type = ShapeType::Quad;
             if (o.contains("center")) obj.center = r.vec3(o["center"], key + ".center");
-            if (!o.contains("u") || !o.contains("v")) r.fail(key + ".u", "a quad needs half-edges u and v");
+            if (!o.contains("u") || !o.contains("v"))
+                r.fail(key + ".u", "a quad needs half-edges u and v");
             obj.u = r.vec3(o["u"], key + ".u");
             obj.v = r.vec3(o["v"], key + ".v");
             glm::dvec3 n = glm::cross(obj.u, obj.v);  // the quad's front side faces u x v
@@ -558,25 +657,35 @@ Scene loadScene(const std::string& path) {
                 r.fail(key + ".v", "u and v must not be parallel or zero");
             // Unit quad [-1,1] x {0} x [-1,1], front +y: local x -> u, y -> the
             // normal, z -> -v (a right-handed frame, so no mirroring).
-            obj.transform = glm::dmat4(glm::dvec4(obj.u, 0), glm::dvec4(glm::normalize(n), 0), glm::dvec4(-obj.v, 0),
-                                       glm::dvec4(obj.center, 1));
+            obj.transform =
+                glm::dmat4(glm::dvec4(obj.u, 0), glm::dvec4(glm::normalize(n), 0),
+                           glm::dvec4(-obj.v, 0), glm::dvec4(obj.center, 1));
         } else if (type == "mesh") {  // chapter 12: every part of the file, as objects
             r.onlyKeys(o, key, {"type", "material", "file", "transform", "moving"});
-            if (!o.contains("file")) r.fail(key + ".file", "missing (a .gltf, .glb or .obj file)");
-            glm::dmat4 place = o.contains("transform") ? readTransform(r, o["transform"], key + ".transform") : glm::dmat4(1.0);
+            if (!o.contains("file"))
+                r.fail(key + ".file", "missing (a .gltf, .glb or .obj file)");
+            glm::dmat4 place = o.contains("transform")
+                                   ? readTransform(r, o["transform"], key + ".transform")
+                                   : glm::dmat4(1.0);
             bool moving = o.contains("moving") && r.boolean(o["moving"], key + ".moving");
             std::optional<uint32_t> material;
-            if (o.contains("material")) material = materialIndex(o["material"], key + ".material");
-            meshFiles.place(r.string(o["file"], key + ".file"), key, place, moving, material);
+            if (o.contains("material"))
+                material = materialIndex(o["material"], key + ".material");
+            meshFiles.place(r.string(o["file"], key + ".file"), key, place, moving,
+                            material);
             continue;
-        } else if (type == "spheres") {  // the compact form for big scenes: one material, many spheres
+        // the compact form for big scenes: one material, many spheres
+        } else if (type == "spheres") {
             r.onlyKeys(o, key, {"type", "material", "data"});
             readSphereList(r, o, key, obj.material, s.objects);
             continue;
         } else {
-            r.fail(key + ".type", "\"" + type + "\" is not a shape (sphere, quad, spheres or mesh)");
+            r.fail(key + ".type",
+                   "\"" + type + "\" is not a shape (sphere, quad, spheres or mesh)");
         }
-        if (o.contains("transform")) obj.transform = readTransform(r, o["transform"], key + ".transform") * obj.transform;
+        if (o.contains("transform"))
+            obj.transform =
+                readTransform(r, o["transform"], key + ".transform") * obj.transform;
         if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
         s.objects.push_back(obj);
     }
@@ -592,7 +701,8 @@ Scene loadScene(const std::string& path) {
     auto compare = [&](uint32_t a, uint32_t b) {
         const Object &oa = s.objects[a], &ob = s.objects[b];
         if (oa.type != ob.type) return oa.type < ob.type ? -1 : 1;
-        if (oa.mesh != ob.mesh) return oa.mesh < ob.mesh ? -1 : 1;  // 0 for spheres and quads
+        // 0 for spheres and quads
+        if (oa.mesh != ob.mesh) return oa.mesh < ob.mesh ? -1 : 1;
         const double *ta = &oa.transform[0][0], *tb = &ob.transform[0][0];
         for (int k = 0; k < 16; ++k) {
             int i = (k + 12) % 16;  // column 3 (the translation), then columns 0, 1, 2
@@ -614,10 +724,14 @@ Scene loadScene(const std::string& path) {
         }
         s.objects[byShape[k]].hidden = true;
         if (++copies <= 3)
-            std::fprintf(stderr, "%s: objects[%u] coincides with objects[%u]; only the first is drawn\n",
-                         path.c_str(), byShape[k], byShape[first]);
+            std::fprintf(
+                stderr,
+                "%s: objects[%u] coincides with objects[%u]; only the first is drawn\n",
+                path.c_str(), byShape[k], byShape[first]);
     }
-    if (copies > 3) std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n", path.c_str(), copies - 3);
+    if (copies > 3)
+        std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n",
+                     path.c_str(), copies - 3);
     // [end]
     // "scale" set the offsets of secondary rays until they came from each
     // hit's own error bound (chapter 06); older files still load, and it is
@@ -631,14 +745,16 @@ void refuseUnstackableMedia(const Scene& scene) {
     for (size_t i = 255; i < scene.materials.size(); ++i)
         if (scene.materials[i].transmission > 0)
             throw InputError(scene.path + ": materials." + scene.materials[i].name +
-                             ": a medium must be among the first 255 materials (chapter 13's stack keeps 8 bits an entry)");
+                             ": a medium must be among the first 255 materials (chapter "
+                             "13's stack keeps 8 bits an entry)");
 }
 
 void refuseMeshes(const Scene& scene) {
     for (const Object& o : scene.objects)
         if (o.type == ShapeType::Mesh)
-            throw InputError(scene.path + ": " + scene.meshes[o.mesh]->name +
-                             ": triangle meshes come in chapter 12; run 12_triangle_meshes");
+            throw InputError(
+                scene.path + ": " + scene.meshes[o.mesh]->name +
+                ": triangle meshes come in chapter 12; run 12_triangle_meshes");
 }
 
 // [region camera_space]
@@ -657,9 +773,13 @@ Scene toCameraSpace(Scene s) {
 // [end]
 
 nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin) {
-    auto array = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
-    return {{"position", array(camera.position - origin)}, {"look_at", array(camera.lookAt - origin)},
-            {"up", array(camera.up)}, {"fov_y_deg", camera.fovYDeg}};
+    auto array = [](const glm::dvec3& v) {
+        return nlohmann::json::array({v.x, v.y, v.z});
+    };
+    return {{"position", array(camera.position - origin)},
+            {"look_at", array(camera.lookAt - origin)},
+            {"up", array(camera.up)},
+            {"fov_y_deg", camera.fovYDeg}};
 }
 
 glm::dvec3 absorptionOf(const glm::dvec3& color, double distance) {

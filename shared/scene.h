@@ -23,7 +23,8 @@ struct Camera {
 
 struct Sky {
     std::string image;  // equirectangular image, sRGB (empty: the gradient below)
-    glm::dvec3 top{0.25, 0.45, 0.85}, horizon{0.8, 0.85, 0.9}, bottom{0.2, 0.18, 0.15};  // linear
+    // linear
+    glm::dvec3 top{0.25, 0.45, 0.85}, horizon{0.8, 0.85, 0.9}, bottom{0.2, 0.18, 0.15};
 };
 
 struct PointLight {
@@ -37,8 +38,10 @@ enum class Glass { None, BK7, FusedSilica, Water, Diamond };
 // Every parameter of chapters 05-11; each chapter reads what it needs.
 struct Material {
     std::string name;
-    glm::dvec3 ka{1, 1, 1};        // ambient coefficient (ch 05), times the scene's ambient light
-    glm::dvec3 kd{0.7, 0.7, 0.7};  // diffuse (ch 06); chapter 04 shows it as the flat colour
+    // ambient coefficient (ch 05), times the scene's ambient light
+    glm::dvec3 ka{1, 1, 1};
+    // diffuse (ch 06); chapter 04 shows it as the flat colour
+    glm::dvec3 kd{0.7, 0.7, 0.7};
     glm::dvec3 ks{0, 0, 0};        // specular (ch 07)
     double shininess = 32;         // Blinn-Phong exponent (ch 07)
     double reflectivity = 0;       // mirror fraction (ch 08)
@@ -46,10 +49,13 @@ struct Material {
     double ior = 1.517;            // index of refraction (ch 09-10)
     double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
     double roughness = 0;          // lobe width for rough reflection (ch 11)
-    int texture = -1;              // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
+    // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
+    int texture = -1;
     // Chapter 13, for a material that transmits: the medium inside it.
-    glm::dvec3 absorption{0};      // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
-    int priority = 0;              // where media overlap, the one of highest priority fills the space
+    // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
+    glm::dvec3 absorption{0};
+    // where media overlap, the one of highest priority fills the space
+    int priority = 0;
     // Its dispersion: a named glass (Sellmeier), else glTF's 20 / Abbe number (0: none).
     Glass glass = Glass::None;
     double dispersion = 0;
@@ -63,9 +69,11 @@ enum class ShapeType { Sphere, Quad, Mesh };
 struct Object {
     ShapeType type = ShapeType::Sphere;
     uint32_t material = 0;
-    bool moving = false;     // chapter 03 moves it every frame by its TLAS transform alone
+    // chapter 03 moves it every frame by its TLAS transform alone
+    bool moving = false;
     glm::dmat4 transform{1.0};  // object -> world
-    bool hidden = false;     // the same shape and transform as an earlier object: that one is drawn
+    // the same shape and transform as an earlier object: that one is drawn
+    bool hidden = false;
     // As written in the file (the reference renderer intersects these directly):
     glm::dvec3 center{0};
     double radius = 1;       // spheres
@@ -83,12 +91,16 @@ struct Scene {
     std::vector<Object> objects;
     // Chapter 12: each mesh once, however many objects place it (one BLAS each).
     std::vector<std::shared_ptr<const Mesh>> meshes;
-    std::vector<std::shared_ptr<const Texture>> textures;  // the meshes' base colour textures
+    // the meshes' base colour textures
+    std::vector<std::shared_ptr<const Texture>> textures;
     // Camera rays ignore hits closer to the eye than this: 0 unless the eye
     // lies on a surface (eyeTmin in scene.cpp; docs/scene-format.md's rule 1).
     double eyeTmin = 0;
-    int cameraMedium = -1;    // chapter 13: the material whose medium the eye is in (camera.medium), -1: air
-    glm::dvec3 origin{0};     // where the file's origin lies in this scene's space (toCameraSpace): file = p - origin
+    // chapter 13: the material whose medium the eye is in (camera.medium), -1: air
+    int cameraMedium = -1;
+    // where the file's origin lies in this scene's space (toCameraSpace): file = p -
+    // origin
+    glm::dvec3 origin{0};
 };
 
 // The longest column of a transform's 3x3 part: the largest stretch it

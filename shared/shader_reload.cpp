@@ -33,19 +33,22 @@ std::vector<std::string> stageFiles(const RtShaders& shaders) {
             if (!f.empty()) files.push_back(f);
     std::vector<std::string> unique;
     for (const std::string& f : files)
-        if (std::find(unique.begin(), unique.end(), f) == unique.end()) unique.push_back(f);
+        if (std::find(unique.begin(), unique.end(), f) == unique.end())
+            unique.push_back(f);
     return unique;
 }
 
 // Runs a program with its output (stdout and stderr) into `log`; returns
 // its exit status, or -1 when it could not start. `started` gets its id.
-int runLogged(const std::vector<std::string>& args, const fs::path& log, const std::function<void(int)>& started) {
+int runLogged(const std::vector<std::string>& args, const fs::path& log,
+              const std::function<void(int)>& started) {
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     pid_t child = 0;
     int error = posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), environ);
@@ -72,7 +75,8 @@ std::string firstError(const fs::path& log, const fs::path& root, int status) {
     }
     if (first.empty()) first = "glslangValidator exited with " + std::to_string(status);
     std::string prefix = root.string() + "/";
-    for (size_t at; (at = first.find(prefix)) != std::string::npos;) first.erase(at, prefix.size());
+    for (size_t at; (at = first.find(prefix)) != std::string::npos;)
+        first.erase(at, prefix.size());
     return first.size() > 200 ? first.substr(0, 200) + "..." : first;
 }
 }  // namespace
@@ -107,18 +111,22 @@ ShaderReload::Times ShaderReload::sourceTimes() const {
     static const std::regex include(R"(^\s*#\s*include\s*"([^"]+)\")");
     Times times;
     std::vector<fs::path> todo;
-    for (const std::string& f : stageFiles(shaders_)) todo.push_back(root_ / "shaders" / f);
+    for (const std::string& f : stageFiles(shaders_))
+        todo.push_back(root_ / "shaders" / f);
     while (!todo.empty()) {
         fs::path file = todo.back();
         todo.pop_back();
         std::error_code error;
         auto time = fs::last_write_time(file, error);
-        if (!times.emplace(file, error ? fs::file_time_type::min() : time).second || error) continue;
+        if (!times.emplace(file, error ? fs::file_time_type::min() : time).second ||
+            error)
+            continue;
         std::ifstream in(file);
         std::smatch m;
         for (std::string line; std::getline(in, line);) {
             if (!std::regex_search(line, m, include)) continue;
-            for (const fs::path& dir : {file.parent_path(), root_ / "shaders" / "common", root_ / "shared"})
+            for (const fs::path& dir :
+                 {file.parent_path(), root_ / "shaders" / "common", root_ / "shared"})
                 if (fs::exists(dir / m[1].str())) {
                     todo.push_back(dir / m[1].str());
                     break;
@@ -156,7 +164,8 @@ void ShaderReload::request() { pending_ = true; }
 
 void ShaderReload::start() {
     pending_ = false;
-    if (!fs::exists(root_ / "shaders" / shaders_.raygen)) return;  // the constructor said why
+    // the constructor said why
+    if (!fs::exists(root_ / "shaders" / shaders_.raygen)) return;
     {
         std::lock_guard lock(mutex_);
         busy_ = true;
@@ -173,23 +182,26 @@ void ShaderReload::compile() {
     for (const std::string& stage : stageFiles(shaders_)) {
         fs::path spv = work_ / (stage + ".spv");
         fs::create_directories(spv.parent_path());
-        std::string validator = fs::exists(RG_GLSLANG_VALIDATOR) ? RG_GLSLANG_VALIDATOR : "glslangValidator";
-        int status = runLogged({validator, "--quiet", "--target-env", "vulkan1.2", "--target-env",
-                                         "spirv1.4", "-I" + (root_ / "shaders" / "common").string(),
-                                         "-I" + (root_ / "shared").string(), "-o", spv.string(),
-                                         (root_ / "shaders" / stage).string()},
-                               log, [this](int pid) {
-                                   std::lock_guard lock(mutex_);
-                                   child_ = pid;
-                                   if (stopping_) kill(pid, SIGTERM);
-                               });
+        std::string validator =
+            fs::exists(RG_GLSLANG_VALIDATOR) ? RG_GLSLANG_VALIDATOR : "glslangValidator";
+        int status =
+            runLogged({validator, "--quiet", "--target-env", "vulkan1.2", "--target-env",
+                       "spirv1.4", "-I" + (root_ / "shaders" / "common").string(),
+                       "-I" + (root_ / "shared").string(), "-o", spv.string(),
+                       (root_ / "shaders" / stage).string()},
+                      log, [this](int pid) {
+                          std::lock_guard lock(mutex_);
+                          child_ = pid;
+                          if (stopping_) kill(pid, SIGTERM);
+                      });
         {
             std::lock_guard lock(mutex_);
             child_ = 0;
             if (stopping_) return;
         }
         if (status != 0) {
-            report(status < 0 ? "shaders: cannot run " + validator : "shader error: " + firstError(log, root_, status),
+            report(status < 0 ? "shaders: cannot run " + validator
+                              : "shader error: " + firstError(log, root_, status),
                    true);
             std::lock_guard lock(mutex_);
             done_ = true, compiled_ = false;
@@ -203,12 +215,15 @@ void ShaderReload::compile() {
 
 void ShaderReload::rebuilt(double pipelineSeconds) {
     char line[96];
-    std::snprintf(line, sizeof line, "shaders: reloaded (compiled in %.1f s, pipeline %.1f s)", seconds_,
+    std::snprintf(line, sizeof line,
+                  "shaders: reloaded (compiled in %.1f s, pipeline %.1f s)", seconds_,
                   pipelineSeconds);
     report(line, false);
 }
 
-void ShaderReload::rebuildFailed(const std::string& why) { report("shaders: the pipeline failed: " + why, true); }
+void ShaderReload::rebuildFailed(const std::string& why) {
+    report("shaders: the pipeline failed: " + why, true);
+}
 
 void ShaderReload::report(const std::string& status, bool failed) {
     {
@@ -217,7 +232,8 @@ void ShaderReload::report(const std::string& status, bool failed) {
         failed_ = failed;
         lastStatus_ = Clock::now();
     }
-    std::printf("%s\n", status.c_str());  // the log says it too (and the tests wait for it)
+    // the log says it too (and the tests wait for it)
+    std::printf("%s\n", status.c_str());
     std::fflush(stdout);
 }
 

@@ -59,7 +59,8 @@ private:
     Times seen_;
     std::thread worker_;
     mutable std::mutex mutex_;  // guards what the worker writes below
-    bool busy_ = false, done_ = false, compiled_ = false, failed_ = false, pending_ = false;
+    bool busy_ = false, done_ = false, compiled_ = false, failed_ = false,
+         pending_ = false;
     int child_ = 0;  // the running validator's process id
     bool stopping_ = false;
     std::string status_;

@@ -17,7 +17,9 @@ namespace rg {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // The median of the last (up to) 30 values: steady numbers in the overlay.
 double recent(const std::vector<double>& values) {
@@ -35,19 +37,30 @@ double recent(const std::vector<double>& values) {
 // inside the command buffer, so the CPU never races the GPU, and the
 // shaders' descriptor sets stay one per chapter.
 void beforeUpload(VkCommandBuffer cmd) {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_WRITE_BIT,  // the last upload's writes
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    memoryBarrier(
+        cmd,
+        VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_TRANSFER_WRITE_BIT,  // the last upload's writes
+        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
 }
-void afterUpload(VkCommandBuffer cmd) {  // read after write: this frame's shaders see the new values
+// read after write: this frame's shaders see the new values
+void afterUpload(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+                  VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                  VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
 }
 // [end]
 }  // namespace
 
-Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target, FrameLoop& loop, Params params)
-    : app_(app), opts_(opts), scene_(scene), rt_(rt), target_(target), loop_(loop), params_(std::move(params)),
+Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target,
+               FrameLoop& loop, Params params)
+    : app_(app),
+      opts_(opts),
+      scene_(scene),
+      rt_(rt),
+      target_(target),
+      loop_(loop),
+      params_(std::move(params)),
       camera_(scene.camera) {
     if (!app.window) return;
     overlay_ = std::make_unique<Overlay>(app.gpu, *app.window);
@@ -57,8 +70,10 @@ Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target
     };
     loop.swapchainRecreated = [this] { resized(); };
     lastUpdate_ = lastTitle_ = lastRays_ = Clock::now();
-    std::printf("Window: left drag orbits, right drag pans, wheel zooms, click picks; W/A/S/D/Q/E fly, R resets, "
-                "C prints the camera, H overlay, F2 screenshot, F5 reloads shaders, Esc quits\n");
+    std::printf(
+        "Window: left drag orbits, right drag pans, wheel zooms, click picks; "
+        "W/A/S/D/Q/E fly, R resets, C prints the camera, H overlay, F2 screenshot, "
+        "F5 reloads shaders, Esc quits\n");
 }
 
 Viewer::~Viewer() {
@@ -73,7 +88,8 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
     if (!app_.window) return frame;  // headless: one fixed view, one long average
     double seconds = std::min(0.1, secondsSince(lastUpdate_));
     lastUpdate_ = Clock::now();
-    if (pendingShot_ && frame > 0 && frameScales_[frame - 1] == 1) {  // the window shows a full frame
+    // the window shows a full frame
+    if (pendingShot_ && frame > 0 && frameScales_[frame - 1] == 1) {
         pendingShot_ = false;
         screenshot(frame);
     }
@@ -91,25 +107,31 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
     if (cameraDirty_) {  // the two matrices at the start of RtCamera (host_device.h)
         scene_.camera = camera_.camera();  // the report and --reference see this view
         glm::mat4 matrices[2];
-        cameraMatrices(scene_.camera, double(rt_.width) / rt_.height, matrices[0], matrices[1]);
+        cameraMatrices(scene_.camera, double(rt_.width) / rt_.height, matrices[0],
+                       matrices[1]);
         vkCmdUpdateBuffer(cmd, rt_.camera.handle, 0, sizeof matrices, matrices);
     }
     if (materialDirty_) {
-        gpu::GpuMaterial m = toGpuMaterial(scene_.materials[size_t(selectedMaterial_)], scene_, rt_.firstTexel);
-        vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_), sizeof m, &m);
+        gpu::GpuMaterial m = toGpuMaterial(scene_.materials[size_t(selectedMaterial_)],
+                                           scene_, rt_.firstTexel);
+        vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_),
+                          sizeof m, &m);
     }
     if (lightsDirty_) {  // all of them: a few 32-byte records
         std::vector<gpu::GpuLight> lights = toGpuLights(scene_);
-        vkCmdUpdateBuffer(cmd, rt_.lights.handle, 0, lights.size() * sizeof lights[0], lights.data());
+        vkCmdUpdateBuffer(cmd, rt_.lights.handle, 0, lights.size() * sizeof lights[0],
+                          lights.data());
     }
     if (upload) afterUpload(cmd);
     // The first frame's upload is no change: a slow start shows no preview.
     if ((upload || changed_) && !frameScales_.empty()) lastChange_ = Clock::now();
     uint32_t scale = previewScale(secondsSince(lastChange_) < 0.25 &&
-                                  !glfwWindowShouldClose(app_.window->handle()));  // the last frame is full
+                                  // the last frame is full
+                                  !glfwWindowShouldClose(app_.window->handle()));
     changed_ = changed_ || scale != scale_;  // a new size: a new average
     if (scale > 1 && !std::exchange(previewNoted_, true)) {
-        std::printf("slow frames: 1/%u of the width and height while the view moves\n", scale);
+        std::printf("slow frames: 1/%u of the width and height while the view moves\n",
+                    scale);
         std::fflush(stdout);
     }
     scale_ = scale;
@@ -120,8 +142,9 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
 
     if (secondsSince(lastTitle_) > 0.25 && !loop_.times().gpuMs.empty()) {
         char title[256];
-        std::snprintf(title, sizeof title, "%s - GPU %.2f ms, frame %.2f ms", app_.window->initialTitle().c_str(),
-                      recent(loop_.times().gpuMs), recent(loop_.times().cpuMs));
+        std::snprintf(title, sizeof title, "%s - GPU %.2f ms, frame %.2f ms",
+                      app_.window->initialTitle().c_str(), recent(loop_.times().gpuMs),
+                      recent(loop_.times().cpuMs));
         app_.window->setTitle(title);
         lastTitle_ = Clock::now();
     }
@@ -133,7 +156,8 @@ void Viewer::handleKeys(uint32_t frame) {
     bool typing = overlayVisible_ && overlay_->wantsKeyboard();  // into an overlay field
     tapped_.clear();
     for (auto [key, mods] : app_.window->takeKeys()) {
-        tapped_.push_back(key);  // pressed since the last frame, maybe let go again (handleFlying)
+        // pressed since the last frame, maybe let go again (handleFlying)
+        tapped_.push_back(key);
         if (key == GLFW_KEY_ESCAPE || (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)))
             glfwSetWindowShouldClose(app_.window->handle(), GLFW_TRUE);
         if (typing) continue;
@@ -141,12 +165,14 @@ void Viewer::handleKeys(uint32_t frame) {
             camera_.reset();
             cameraDirty_ = true;
         } else if (key == GLFW_KEY_C) {  // a block to paste into the scene file
-            std::printf("\"camera\": %s\n", cameraToJson(camera_.camera(), scene_.origin).dump().c_str());
+            std::printf("\"camera\": %s\n",
+                        cameraToJson(camera_.camera(), scene_.origin).dump().c_str());
             std::fflush(stdout);
         } else if (key == GLFW_KEY_H) {
             overlayVisible_ = !overlayVisible_;
         } else if (key == GLFW_KEY_F2) {
-            if (scale_ > 1) pendingShot_ = true;  // a preview is on screen: the next full frame
+            // a preview is on screen: the next full frame
+            if (scale_ > 1) pendingShot_ = true;
             else screenshot(frame);
         } else if (key == GLFW_KEY_F5 && reload_) {
             reload_->request();
@@ -168,7 +194,8 @@ void Viewer::handleMouse() {
     // clicked is not yet its. So the overlay's box too.
     auto onOverlay = [&](double x, double y) {
         const double* b = overlayBox_;
-        return overlayHasMouse || (overlayVisible_ && x >= b[0] && y >= b[1] && x < b[0] + b[2] && y < b[1] + b[3]);
+        return overlayHasMouse || (overlayVisible_ && x >= b[0] && y >= b[1] &&
+                                   x < b[0] + b[2] && y < b[1] + b[3]);
     };
     using Event = Window::PointerEvent;
     for (const Event& e : app_.window->takePointer()) {
@@ -178,16 +205,19 @@ void Viewer::handleMouse() {
             pressY_ = lastY_ = e.y;
             dragMoved_ = false;
         } else if (e.kind == Event::Move && dragButton_ >= 0) {
-            dragMoved_ = dragMoved_ || std::abs(e.x - pressX_) + std::abs(e.y - pressY_) > 3;
+            dragMoved_ =
+                dragMoved_ || std::abs(e.x - pressX_) + std::abs(e.y - pressY_) > 3;
             if (dragMoved_) {
-                if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT) camera_.orbit(e.x - lastX_, e.y - lastY_);
+                if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT)
+                    camera_.orbit(e.x - lastX_, e.y - lastY_);
                 else camera_.pan(e.x - lastX_, e.y - lastY_, app_.window->extent.height);
                 cameraDirty_ = true;
             }
             lastX_ = e.x;
             lastY_ = e.y;
         } else if (e.kind == Event::Release && e.button == dragButton_) {
-            if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);  // a click, not a drag
+            // a click, not a drag
+            if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);
             dragButton_ = -1;
         }
     }
@@ -195,7 +225,8 @@ void Viewer::handleMouse() {
 
 void Viewer::handleFlying(double seconds) {
     GLFWwindow* w = app_.window->handle();
-    if ((overlayVisible_ && overlay_->wantsKeyboard()) || glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS)
+    if ((overlayVisible_ && overlay_->wantsKeyboard()) ||
+        glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS)
         return;
     // Held now, or pressed and let go since the last frame: a short tap
     // still moves when a frame takes longer than the tap (lavapipe).
@@ -203,13 +234,15 @@ void Viewer::handleFlying(double seconds) {
         bool tapped = std::find(tapped_.begin(), tapped_.end(), key) != tapped_.end();
         return glfwGetKey(w, key) == GLFW_PRESS || tapped ? 1.0 : 0.0;
     };
-    glm::dvec3 move{held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q),
+    glm::dvec3 move{held(GLFW_KEY_D) - held(GLFW_KEY_A),
+                    held(GLFW_KEY_E) - held(GLFW_KEY_Q),
                     held(GLFW_KEY_W) - held(GLFW_KEY_S)};
     if (move == glm::dvec3(0)) return;
     // Half the distance to the look-at point per second (it moves along, so
     // the speed stays): slow close up, fast in a wide view. Shift: 4x.
     const Camera& c = camera_.camera();
-    double speed = 0.5 * glm::length(c.lookAt - c.position) * (held(GLFW_KEY_LEFT_SHIFT) ? 4 : 1);
+    double speed =
+        0.5 * glm::length(c.lookAt - c.position) * (held(GLFW_KEY_LEFT_SHIFT) ? 4 : 1);
     camera_.fly(move * speed * seconds);
     cameraDirty_ = true;
 }
@@ -218,9 +251,11 @@ void Viewer::pick(double x, double y) {
     if (!picker_) picker_.emplace(scene_);
     int w = 0, h = 0;
     glfwGetWindowSize(app_.window->handle(), &w, &h);
-    double px = x * rt_.width / std::max(1, w), py = y * rt_.height / std::max(1, h);  // target pixels
+    // target pixels
+    double px = x * rt_.width / std::max(1, w), py = y * rt_.height / std::max(1, h);
     glm::dvec3 direction = camera_.rayDirection(px, py, rt_.width, rt_.height);
-    ReferenceHit hit = picker_->trace(camera_.camera().position, direction, picker_->eyeTmin(), 1e30);
+    ReferenceHit hit =
+        picker_->trace(camera_.camera().position, direction, picker_->eyeTmin(), 1e30);
     selectedMaterial_ = hit.t < 0 ? -1 : int(scene_.objects[hit.object].material);
     openMaterial_ = selectedMaterial_ >= 0;
 }
@@ -229,38 +264,47 @@ void Viewer::drawOverlay(uint32_t frame) {
     overlay_->beginFrame();
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.8f);
-    ImGui::Begin(app_.window->initialTitle().c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Begin(app_.window->initialTitle().c_str(), nullptr,
+                 ImGuiWindowFlags_AlwaysAutoResize);
     // Compact, so that the picture stays in view: two lines of numbers, the
     // chapter's parameters, the material only once one is picked.
     const FrameTimes& times = loop_.times();
     double frameMs = times.cpuMs.empty() ? 0.0 : recent(times.cpuMs);
-    ImGui::Text("GPU %.2f ms  %.1f fps  %.1f Mrays/s", times.gpuMs.empty() ? 0.0 : recent(times.gpuMs),
+    ImGui::Text("GPU %.2f ms  %.1f fps  %.1f Mrays/s",
+                times.gpuMs.empty() ? 0.0 : recent(times.gpuMs),
                 frameMs > 0 ? 1000 / frameMs : 0.0, mraysPerS_);
     if (scale_ > 1)
         ImGui::Text("%ux%u at 1/%u while moving", rt_.width, rt_.height, scale_);
     else if (averaging)
-        ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height, (unsigned long long)raysPerFrame_,
-                    frame - firstFrame_ + 1);
+        ImGui::Text("%ux%u, %llu rays, %u frames averaged", rt_.width, rt_.height,
+                    (unsigned long long)raysPerFrame_, frame - firstFrame_ + 1);
     else
-        ImGui::Text("%ux%u, %llu rays, one frame", rt_.width, rt_.height, (unsigned long long)raysPerFrame_);
+        ImGui::Text("%ux%u, %llu rays, one frame", rt_.width, rt_.height,
+                    (unsigned long long)raysPerFrame_);
     ImGui::PushItemWidth(140);
     bool chapterParams = std::any_of(params_.all().begin(), params_.all().end(),
                                      [](const Param& p) { return p.section.empty(); });
-    if (chapterParams && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
+    if (chapterParams &&
+        ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
         parameterControls("");
     if (ImGui::CollapsingHeader("View and light")) viewControls();
-    if (std::exchange(openMaterial_, false)) ImGui::SetNextItemOpen(true);  // a click just picked one
+    // a click just picked one
+    if (std::exchange(openMaterial_, false)) ImGui::SetNextItemOpen(true);
     if (ImGui::CollapsingHeader("Material")) materialControls();
     ImGui::PopItemWidth();
-    ImGui::TextDisabled("keys: WASDQE R C H F2 F5 Esc (hover)");  // every key, in one line
+    // every key, in one line
+    ImGui::TextDisabled("keys: WASDQE R C H F2 F5 Esc (hover)");
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("left drag orbits, right drag pans, wheel zooms, click picks\n"
-                          "W/A/S/D/Q/E fly (Shift: 4x), R resets the view, C prints the camera\n"
-                          "H hides this, F2 saves a screenshot, F5 reloads the shaders, Esc quits");
+        ImGui::SetTooltip(
+            "left drag orbits, right drag pans, wheel zooms, click picks\n"
+            "W/A/S/D/Q/E fly (Shift: 4x), R resets the view, C prints the camera\n"
+            "H hides this, F2 saves a screenshot, F5 reloads the shaders, Esc quits");
     std::string status = reload_ ? reload_->status() : std::string();
-    if (const char* error = "shader error: "; status.rfind(error, 0) == 0) {  // its file and line on a line
+    // its file and line on a line
+    if (const char* error = "shader error: "; status.rfind(error, 0) == 0) {
         size_t at = status.find(": ", std::strlen(error));
-        status = "shader error in\n" + status.substr(std::strlen(error), at - std::strlen(error)) + ":\n" +
+        status = "shader error in\n" +
+                 status.substr(std::strlen(error), at - std::strlen(error)) + ":\n" +
                  (at == std::string::npos ? "" : status.substr(at + 2));
     }
     if (!status.empty()) {
@@ -271,7 +315,8 @@ void Viewer::drawOverlay(uint32_t frame) {
         ImGui::PopTextWrapPos();
     }
     ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    overlayBox_[0] = at.x, overlayBox_[1] = at.y, overlayBox_[2] = size.x, overlayBox_[3] = size.y;
+    overlayBox_[0] = at.x, overlayBox_[1] = at.y, overlayBox_[2] = size.x,
+    overlayBox_[3] = size.y;
     ImGui::End();
 }
 
@@ -285,17 +330,21 @@ void Viewer::parameterControls(const std::string& section) {
         bool edited = false;
         switch (p.kind) {
         case Param::Kind::Integer:
-            edited = ImGui::SliderInt(label, p.integer, int(p.min), int(p.max), "%d",
-                                      ImGuiSliderFlags_AlwaysClamp |
-                                          (p.max - p.min > 64 ? ImGuiSliderFlags_Logarithmic : 0));
+            edited = ImGui::SliderInt(
+                label, p.integer, int(p.min), int(p.max), "%d",
+                ImGuiSliderFlags_AlwaysClamp |
+                    (p.max - p.min > 64 ? ImGuiSliderFlags_Logarithmic : 0));
             break;
         case Param::Kind::Number:
-            if (p.logarithmic)  // from 0 it reaches down to 10^-(digits after the point): 06's epsilon, 1e-9
-                edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), p.min == 0 ? "%.10f" : "%.3g",
-                                            ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+            // from 0 it reaches down to 10^-(digits after the point): 06's epsilon, 1e-9
+            if (p.logarithmic)
+                edited = ImGui::SliderFloat(
+                    label, p.number, float(p.min), float(p.max),
+                    p.min == 0 ? "%.10f" : "%.3g",
+                    ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
             else
-                edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max), "%.1f",
-                                            ImGuiSliderFlags_AlwaysClamp);
+                edited = ImGui::SliderFloat(label, p.number, float(p.min), float(p.max),
+                                            "%.1f", ImGuiSliderFlags_AlwaysClamp);
             break;
         case Param::Kind::Choice: {
             std::vector<const char*> names;
@@ -309,7 +358,8 @@ void Viewer::parameterControls(const std::string& section) {
         }
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-            ImGui::SetTooltip("%s %s%s", p.flag.c_str(), p.help.c_str(), p.live ? "" : " (read at start only)");
+            ImGui::SetTooltip("%s %s%s", p.flag.c_str(), p.help.c_str(),
+                              p.live ? "" : " (read at start only)");
         changed_ = changed_ || edited;
     }
 }
@@ -318,11 +368,14 @@ void Viewer::parameterControls(const std::string& section) {
 // each point light's position (in the scene file's coordinates) and intensity.
 void Viewer::viewControls() {
     float fov = float(camera_.camera().fovYDeg);
-    if (ImGui::SliderFloat("fov", &fov, 5, 120, "%.1f deg", ImGuiSliderFlags_AlwaysClamp)) {
+    if (ImGui::SliderFloat("fov", &fov, 5, 120, "%.1f deg",
+                           ImGuiSliderFlags_AlwaysClamp)) {
         camera_.setFovY(fov);
         cameraDirty_ = true;
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("vertical field of view (the scene's camera fov_y_deg; R resets)");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "vertical field of view (the scene's camera fov_y_deg; R resets)");
     parameterControls("view");
     // Lights from chapter 05 on, the chapters that shade: they declare
     // --exposure. Chapter 04 shows normals, which no light changes.
@@ -340,8 +393,10 @@ void Viewer::viewControls() {
             light.position = glm::dvec3(at) + scene_.origin;
             lightsDirty_ = true;
         }
-        float v[3] = {float(light.intensity.r), float(light.intensity.g), float(light.intensity.b)};
-        if (ImGui::ColorEdit3("intensity", v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+        float v[3] = {float(light.intensity.r), float(light.intensity.g),
+                      float(light.intensity.b)};
+        if (ImGui::ColorEdit3("intensity", v,
+                              ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
             light.intensity = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(0));
             lightsDirty_ = true;
         }
@@ -366,9 +421,11 @@ void Viewer::materialControls() {
             edited = true;
         }
     };
-    auto number = [&](const char* label, double& value, float min, float max, ImGuiSliderFlags flags = 0) {
+    auto number = [&](const char* label, double& value, float min, float max,
+                      ImGuiSliderFlags flags = 0) {
         float v = float(value);
-        if (ImGui::SliderFloat(label, &v, min, max, "%.3f", flags | ImGuiSliderFlags_AlwaysClamp)) {
+        if (ImGui::SliderFloat(label, &v, min, max, "%.3f",
+                               flags | ImGuiSliderFlags_AlwaysClamp)) {
             value = v;
             edited = true;
         }
@@ -408,7 +465,8 @@ void Viewer::resized() {
 void Viewer::reloadShaders(const RtShaders& shaders, Rebuild rebuild) {
     if (!app_.window) return;
     reload_ = std::make_unique<ShaderReload>(
-        shaders, opts_.shaderSource.empty() ? builtSourceRoot() : std::filesystem::path(opts_.shaderSource));
+        shaders, opts_.shaderSource.empty() ? builtSourceRoot()
+                                            : std::filesystem::path(opts_.shaderSource));
     rebuild_ = std::move(rebuild);
 }
 
@@ -459,15 +517,18 @@ VkExtent2D Viewer::launchSize() const {
 void Viewer::measureRays() {
     VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the counts of finished frames only
     raysPerFrame_ = countRays(app_.gpu, rt_);
-    mraysPerS_ = mraysPerSecond(raysPerFrame_, loop_.times().gpuMs.empty() ? 0 : recent(loop_.times().gpuMs));
+    mraysPerS_ = mraysPerSecond(
+        raysPerFrame_, loop_.times().gpuMs.empty() ? 0 : recent(loop_.times().gpuMs));
     lastRays_ = Clock::now();
 }
 
 // F2: the ray traced image as it is (never the overlay) and a report that
 // says how to get it again: camera, size, parameters.
 void Viewer::screenshot(uint32_t frame) {
-    VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));  // the last finished frame is what the window shows
-    FloatImage image = readImage(app_.gpu, target_, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
+    // the last finished frame is what the window shows
+    VK_CHECK(vkQueueWaitIdle(app_.gpu.queue));
+    FloatImage image =
+        readImage(app_.gpu, target_, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR);
     std::string stem;
     do stem = opts_.chapter + "_shot" + std::to_string(++screenshots_);
     while (std::filesystem::exists(stem + ".png"));
@@ -475,13 +536,17 @@ void Viewer::screenshot(uint32_t frame) {
     nlohmann::json report = makeReport(opts_, app_.gpu, loop_.times());
     report["scene"] = scene_.path;
     report["camera"] = cameraToJson(camera_.camera(), scene_.origin);
-    report["accumulated_frames"] = averaging ? frame - firstFrame_ : 1;  // the frames in the picture
-    if (selectedMaterial_ >= 0) report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
+    // the frames in the picture
+    report["accumulated_frames"] = averaging ? frame - firstFrame_ : 1;
+    if (selectedMaterial_ >= 0)
+        report["selected_material"] = scene_.materials[size_t(selectedMaterial_)].name;
     report["parameters"] = params_.values();
     report["lights"] = nlohmann::json::array();  // as the View and light section has them
     for (const PointLight& l : scene_.lights) {
         glm::dvec3 p = l.position - scene_.origin;  // the scene file's coordinates
-        report["lights"].push_back({{"position", {p.x, p.y, p.z}}, {"intensity", {l.intensity.r, l.intensity.g, l.intensity.b}}});
+        report["lights"].push_back(
+            {{"position", {p.x, p.y, p.z}},
+             {"intensity", {l.intensity.r, l.intensity.g, l.intensity.b}}});
     }
     writeReport(stem + ".json", report);
     std::printf("F2: wrote %s.png and %s.json\n", stem.c_str(), stem.c_str());

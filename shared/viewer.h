@@ -29,7 +29,8 @@ public:
     // Hooks into `loop` (overlay, resize). Changes it makes go to `scene`
     // (camera, materials), `opts` (size) and the values `params` point to,
     // so the end of the run (report, --reference) sees what is on screen.
-    Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target, FrameLoop& loop, Params params = {});
+    Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target,
+           FrameLoop& loop, Params params = {});
     ~Viewer();
 
     // Call first when recording a frame: applies the input, records the
@@ -52,7 +53,8 @@ public:
     // `shaders` is saved, or on F5, and it compiles, `rebuild` makes the
     // pipeline again from the new stages, its objects in the queue it gets
     // (the previous reload's go when it returns). Headless: nothing.
-    using Rebuild = std::function<void(const RtShaders& compiled, DeletionQueue& deletion)>;
+    using Rebuild =
+        std::function<void(const RtShaders& compiled, DeletionQueue& deletion)>;
     void reloadShaders(const RtShaders& shaders, Rebuild rebuild);
 
 private:
@@ -80,17 +82,22 @@ private:
     CameraControl camera_;
     std::unique_ptr<Overlay> overlay_;
     bool overlayVisible_ = true;
-    double overlayBox_[4] = {0, 0, 0, 0};  // the overlay's window as last drawn: x, y, width, height
+    // the overlay's window as last drawn: x, y, width, height
+    double overlayBox_[4] = {0, 0, 0, 0};
     DeletionQueue resizedTarget_;  // the target and ray counts of the last resize
-    std::optional<ReferenceRenderer> picker_;  // one CPU ray per click, built at the first click
+    // one CPU ray per click, built at the first click
+    std::optional<ReferenceRenderer> picker_;
     std::unique_ptr<ShaderReload> reload_;
     Rebuild rebuild_;
     std::unique_ptr<DeletionQueue> reloaded_;  // the pipeline of the last reload
     bool reloadFailed_ = false;
-    uint32_t scale_ = 1;                 // this frame traces 1/scale_ of the width and height
+    // this frame traces 1/scale_ of the width and height
+    uint32_t scale_ = 1;
     std::vector<uint8_t> frameScales_;   // each frame's scale_, by frame number
-    std::chrono::steady_clock::time_point lastChange_{};     // of the view, a light, a material or a parameter
-    bool pendingShot_ = false;           // F2 during a preview: taken at the next full frame
+    // of the view, a light, a material or a parameter
+    std::chrono::steady_clock::time_point lastChange_{};
+    // F2 during a preview: taken at the next full frame
+    bool pendingShot_ = false;
     bool previewNoted_ = false;
     std::vector<int> tapped_;  // keys pressed since the last frame
 

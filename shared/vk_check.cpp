@@ -7,9 +7,10 @@ namespace rg {
 const char* vkResultName(VkResult result) {
     switch (result) {
 #define RG_CASE(x) case x: return #x;
-        RG_CASE(VK_SUCCESS) RG_CASE(VK_NOT_READY) RG_CASE(VK_TIMEOUT) RG_CASE(VK_EVENT_SET)
-        RG_CASE(VK_EVENT_RESET) RG_CASE(VK_INCOMPLETE) RG_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
-        RG_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY) RG_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        RG_CASE(VK_SUCCESS) RG_CASE(VK_NOT_READY) RG_CASE(VK_TIMEOUT)
+        RG_CASE(VK_EVENT_SET) RG_CASE(VK_EVENT_RESET) RG_CASE(VK_INCOMPLETE)
+        RG_CASE(VK_ERROR_OUT_OF_HOST_MEMORY) RG_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        RG_CASE(VK_ERROR_INITIALIZATION_FAILED)
         RG_CASE(VK_ERROR_DEVICE_LOST) RG_CASE(VK_ERROR_MEMORY_MAP_FAILED)
         RG_CASE(VK_ERROR_LAYER_NOT_PRESENT) RG_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
         RG_CASE(VK_ERROR_FEATURE_NOT_PRESENT) RG_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
@@ -33,8 +34,9 @@ void vkCheckFailed(const char* call, VkResult result, const char* file, int line
                        (base ? base + 1 : file) + ":" + std::to_string(line);
     // Out of memory is no bug: say what to try (what was made is freed as
     // the error unwinds through the deletion queues).
-    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-        what = std::string(result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "out of GPU memory" : "out of host memory") +
+    bool gpuMemory = result == VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    if (gpuMemory || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        what = std::string(gpuMemory ? "out of GPU memory" : "out of host memory") +
                " (" + what + "); try a smaller --width and --height or a smaller scene";
     throw VulkanError(what, result);
 }

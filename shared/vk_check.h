@@ -14,10 +14,12 @@ const char* vkResultName(VkResult result);
 
 struct VulkanError : std::runtime_error {
     VkResult result;
-    VulkanError(const std::string& what, VkResult r) : std::runtime_error(what), result(r) {}
+    VulkanError(const std::string& what, VkResult r)
+        : std::runtime_error(what), result(r) {}
 };
 
-[[noreturn]] void vkCheckFailed(const char* call, VkResult result, const char* file, int line);
+[[noreturn]] void vkCheckFailed(const char* call, VkResult result, const char* file,
+                                int line);
 
 }  // namespace rg
 

@@ -18,15 +18,19 @@ namespace {
 // window's objects. Say so in one line and end the process at once: the
 // system frees everything, no half-destroyed Vulkan state is left to report.
 int onDisplayLost(Display*) {
-    std::fprintf(stderr, "%s: error: the display connection was lost (the X server went away); quitting\n",
-                 program_invocation_short_name);
+    std::fprintf(
+        stderr,
+        "%s: error: the display connection was lost (the X server went away); quitting\n",
+        program_invocation_short_name);
     std::fflush(stderr);
     _exit(1);
 }
 }  // namespace
 
 Window::Window(int width, int height, const std::string& title) : title_(title) {
-    if (!glfwInit()) throw std::runtime_error("GLFW cannot open a window here (no display?); use --headless");
+    if (!glfwInit())
+        throw std::runtime_error(
+            "GLFW cannot open a window here (no display?); use --headless");
     XSetIOErrorHandler(onDisplayLost);
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
@@ -39,7 +43,9 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
         static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
     });
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
-        if (action == GLFW_PRESS) static_cast<Window*>(glfwGetWindowUserPointer(w))->keys_.push_back({key, mods});
+        if (action == GLFW_PRESS)
+            static_cast<Window*>(glfwGetWindowUserPointer(w))
+                ->keys_.push_back({key, mods});
     });
     // Where the pointer was when a button went down: the last motion event
     // before it. glfwGetCursorPos asks the X server for the pointer now,
@@ -47,7 +53,8 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
     glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
         self->cursor_[0] = x, self->cursor_[1] = y, self->cursorKnown_ = true;
-        if (self->buttonsHeld_ > 0) self->pointer_.push_back({PointerEvent::Move, -1, x, y});
+        if (self->buttonsHeld_ > 0)
+            self->pointer_.push_back({PointerEvent::Move, -1, x, y});
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
@@ -55,7 +62,8 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
         if (!self->cursorKnown_) glfwGetCursorPos(w, &x, &y);  // no motion yet
         bool press = action == GLFW_PRESS;
         self->buttonsHeld_ = std::max(0, self->buttonsHeld_ + (press ? 1 : -1));
-        self->pointer_.push_back({press ? PointerEvent::Press : PointerEvent::Release, button, x, y});
+        self->pointer_.push_back(
+            {press ? PointerEvent::Press : PointerEvent::Release, button, x, y});
     });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += y;
@@ -97,18 +105,23 @@ void Window::createSwapchain(const Gpu& gpu, DeletionQueue& deletion) {
     VK_CHECK(vkDeviceWaitIdle(gpu.device));  // the old images may still be in use
 
     VkSurfaceCapabilitiesKHR caps;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu.physical.handle, surface, &caps));
+    VK_CHECK(
+        vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu.physical.handle, surface, &caps));
     if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
-        throw std::runtime_error("the surface's images cannot be blit targets (TRANSFER_DST)");
+        throw std::runtime_error(
+            "the surface's images cannot be blit targets (TRANSFER_DST)");
     // (COLOR_ATTACHMENT, the overlay's usage, every surface supports.)
     uint32_t count = 0;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu.physical.handle, surface, &count, nullptr));
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu.physical.handle, surface, &count,
+                                                  nullptr));
     std::vector<VkSurfaceFormatKHR> formats(count);
-    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu.physical.handle, surface, &count, formats.data()));
+    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu.physical.handle, surface, &count,
+                                                  formats.data()));
     // An *_SRGB format applies the display transform (display.h) in hardware.
     VkSurfaceFormatKHR chosen = formats[0];
     for (const auto& f : formats)
-        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+        if ((f.format == VK_FORMAT_B8G8R8A8_SRGB ||
+             f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
             f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
             chosen = f;
 
@@ -116,8 +129,10 @@ void Window::createSwapchain(const Gpu& gpu, DeletionQueue& deletion) {
     glfwGetFramebufferSize(window_, &w, &h);
     extent = caps.currentExtent.width != UINT32_MAX
                  ? caps.currentExtent
-                 : VkExtent2D{std::clamp(uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width),
-                              std::clamp(uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+                 : VkExtent2D{std::clamp(uint32_t(w), caps.minImageExtent.width,
+                                         caps.maxImageExtent.width),
+                              std::clamp(uint32_t(h), caps.minImageExtent.height,
+                                         caps.maxImageExtent.height)};
     uint32_t imageCount = caps.minImageCount + 1;
     if (caps.maxImageCount > 0) imageCount = std::min(imageCount, caps.maxImageCount);
 
@@ -131,7 +146,8 @@ void Window::createSwapchain(const Gpu& gpu, DeletionQueue& deletion) {
         .imageExtent = extent,
         .imageArrayLayers = 1,
         // Filled by a blit; the overlay (overlay.h) then draws on it.
-        .imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+        .imageUsage =
+            VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
         .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .preTransform = caps.currentTransform,
         .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR,

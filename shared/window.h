@@ -14,7 +14,8 @@ namespace rg {
 
 class Window {
 public:
-    Window(int width, int height, const std::string& title);  // throws when no window can be opened
+    // throws when no window can be opened
+    Window(int width, int height, const std::string& title);
     ~Window();
     Window(const Window&) = delete;
     Window& operator=(const Window&) = delete;
@@ -30,7 +31,9 @@ public:
     // until the window is visible again or closed.
     void pollEvents();
     bool resized() const { return resized_; }
-    void setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+    void setTitle(const std::string& title) {
+        glfwSetWindowTitle(window_, title.c_str());
+    }
     const std::string& initialTitle() const { return title_; }
     // The keys pressed since the last call, oldest first, with the modifiers
     // held at the time (Ctrl+Q must not be read after Ctrl was let go).

@@ -54,14 +54,25 @@ class DocsCheck(unittest.TestCase):
         self.assertEqual(docs(self.root, "--check").returncode, 0)
 
     def test_listing_names_its_file(self):
+        # The caption links the file: on the site, its code page (hooks.py).
         self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
         docs(self.root, "--write")
-        self.assertIn("<!-- snippet: a.rgen#inner -->\n`a.rgen`\n\n```glsl\n", (self.root / "docs" / "p.md").read_text())
+        self.assertIn("<!-- snippet: a.rgen#inner -->\n[`a.rgen`](../a.rgen)\n\n```glsl\n",
+                      (self.root / "docs" / "p.md").read_text())
 
     def test_inner_region_alone(self):
         self.page("<!-- snippet: a.rgen#inner -->\n<!-- end -->\n")
         docs(self.root, "--write")
         self.assertIn("```glsl\nint b = 2;\n```\n", (self.root / "docs" / "p.md").read_text())
+
+    def test_a_source_line_over_90_characters_fails_the_check(self):
+        (self.root / "shaders").mkdir()
+        (self.root / "shaders" / "ok.rgen").write_text("x" * 90 + "\n")
+        self.assertEqual(docs(self.root, "--check").returncode, 0)
+        (self.root / "shaders" / "long.glsl").write_text("int a;\n" + "y" * 91 + "\n")
+        r = docs(self.root, "--check")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("shaders/long.glsl:2 (91 characters)", r.stdout)
 
     def test_truncated_listing_fails_the_check(self):
         self.page("<!-- snippet: a.rgen#outer -->\n" + TRUNCATED + "<!-- end -->\n")

@@ -16,8 +16,13 @@ Regions nest: each `// [end]` closes the innermost open region, and the
 markers of inner regions are left out of listings and diffs. A file whose
 markers do not balance is an error.
 
+The tutorial's sources (chapters/, shared/, shaders/), which the pages
+quote, keep their lines to 90 characters: a listing then fits the page's
+column at 1280 px without scrolling (tests/test_site.py checks that too).
+
     tools/docs.py --write   rewrite those blocks from the code
-    tools/docs.py --check   exit 1 (naming the page and block) if any is stale
+    tools/docs.py --check   exit 1 (naming the page and block) if any is stale,
+                            or (naming file and line) if a source line is too long
     --root DIR              the repository to work on (default: this one)
 """
 import difflib
@@ -157,7 +162,7 @@ def footer(root, chapter):
         nav.append(f"Next: [{title(pages[i + 1])}]({pages[i + 1].name})")
     commands = [(f"cmake --build build --target {chapter}", "this chapter alone"),
                 (f"build/bin/{chapter}", "a window, where a display exists"),
-                (f"build/bin/{chapter} --headless", f"writes out/{chapter}.png and .json"),
+                (f"build/bin/{chapter} --headless", "PNG and JSON report into out/"),
                 (f"ctest --test-dir build -L {nn}", "its tests")]
     width = max(len(c) for c, _ in commands) + 2
     block = "".join(f"{c.ljust(width)}# {why}\n" for c, why in commands)
@@ -171,7 +176,7 @@ def render(root, kind, arg):
         return footer(root, arg)
     if kind == "snippet":  # the listing, captioned with the file it comes from
         path, name = arg.split("#")
-        return f"`{path}`\n\n" + region(root, path, name)
+        return f"[`{path}`](../{path})\n\n" + region(root, path, name)
     old, new = arg.split()
     return diff(root, old, new)
 
@@ -195,7 +200,30 @@ def run(root, mode):
         print("docs.py: these blocks differ from the code (run tools/docs.py --write):")
         print("\n".join("  " + s for s in stale))
         return 1
+    if mode == "--check":
+        long = long_lines(root)
+        if long:
+            print(f"docs.py: lines longer than {MAX_COLUMNS} characters in the tutorial's sources:")
+            print("\n".join("  " + s for s in long))
+            return 1
     return 0
+
+
+MAX_COLUMNS = 90
+SOURCES = ("chapters", "shared", "shaders")
+
+
+def long_lines(root):
+    """`path:line (N characters)` for each line of the tutorial's sources over MAX_COLUMNS."""
+    found = []
+    for folder in SOURCES:
+        for path in sorted((root / folder).rglob("*")):
+            if not path.is_file() or LANG.get(path.suffix) not in ("cpp", "glsl"):
+                continue
+            for number, line in enumerate(path.read_text(errors="replace").split("\n"), 1):
+                if len(line) > MAX_COLUMNS:
+                    found.append(f"{path.relative_to(root)}:{number} ({len(line)} characters)")
+    return found
 
 
 def main(argv):

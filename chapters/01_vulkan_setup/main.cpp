@@ -32,9 +32,12 @@ void printRayTracingProperties(const rg::PhysicalDeviceChoice& physical) {
     std::printf("  maxRayRecursionDepth         %u\n", rt.maxRayRecursionDepth);
     std::printf("  maxShaderGroupStride         %u\n", rt.maxShaderGroupStride);
     std::printf("  maxRayDispatchInvocations    %u\n", rt.maxRayDispatchInvocationCount);
-    std::printf("  maxGeometryCount (per BLAS)  %llu\n", (unsigned long long)as.maxGeometryCount);
-    std::printf("  maxInstanceCount (per TLAS)  %llu\n", (unsigned long long)as.maxInstanceCount);
-    std::printf("  timestampPeriod              %.3f ns\n", physical.properties.limits.timestampPeriod);
+    std::printf("  maxGeometryCount (per BLAS)  %llu\n",
+                (unsigned long long)as.maxGeometryCount);
+    std::printf("  maxInstanceCount (per TLAS)  %llu\n",
+                (unsigned long long)as.maxInstanceCount);
+    std::printf("  timestampPeriod              %.3f ns\n",
+                physical.properties.limits.timestampPeriod);
 }
 
 // Descriptors (figure 2.1): the layout says "binding 0 is a storage image",
@@ -45,7 +48,8 @@ struct Descriptors {
     VkDescriptorSet set = VK_NULL_HANDLE;
 };
 
-Descriptors createDescriptors(const rg::Gpu& gpu, const rg::Image& target, rg::DeletionQueue& deletion) {
+Descriptors createDescriptors(const rg::Gpu& gpu, const rg::Image& target,
+                              rg::DeletionQueue& deletion) {
     Descriptors d;
     VkDescriptorSetLayoutBinding binding{
         .binding = PATTERN_BINDING_TARGET,
@@ -59,7 +63,8 @@ Descriptors createDescriptors(const rg::Gpu& gpu, const rg::Image& target, rg::D
         .pBindings = &binding,
     };
     VK_CHECK(vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, nullptr, &d.layout));
-    VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .descriptorCount = 1};
+    VkDescriptorPoolSize size{.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              .descriptorCount = 1};
     VkDescriptorPoolCreateInfo poolInfo{
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .maxSets = 1,
@@ -79,7 +84,8 @@ Descriptors createDescriptors(const rg::Gpu& gpu, const rg::Image& target, rg::D
         .pSetLayouts = &d.layout,
     };
     VK_CHECK(vkAllocateDescriptorSets(gpu.device, &allocate, &d.set));
-    VkDescriptorImageInfo image{.imageView = target.view, .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
+    VkDescriptorImageInfo image{.imageView = target.view,
+                                .imageLayout = VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet write{
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = d.set,
@@ -99,9 +105,11 @@ struct Pipeline {
     VkPipeline pipeline = VK_NULL_HANDLE;
 };
 
-Pipeline createPatternPipeline(const rg::Gpu& gpu, VkDescriptorSetLayout setLayout, rg::DeletionQueue& deletion) {
+Pipeline createPatternPipeline(const rg::Gpu& gpu, VkDescriptorSetLayout setLayout,
+                               rg::DeletionQueue& deletion) {
     Pipeline p;
-    VkPushConstantRange push{.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .size = sizeof(rg::gpu::PatternPush)};
+    VkPushConstantRange push{.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+                             .size = sizeof(rg::gpu::PatternPush)};
     VkPipelineLayoutCreateInfo layoutInfo{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
         .setLayoutCount = 1,
@@ -120,7 +128,8 @@ Pipeline createPatternPipeline(const rg::Gpu& gpu, VkDescriptorSetLayout setLayo
         },
         .layout = p.layout,
     };
-    VK_CHECK(vkCreateComputePipelines(gpu.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
+    VK_CHECK(vkCreateComputePipelines(gpu.device, VK_NULL_HANDLE, 1, &info, nullptr,
+                                      &p.pipeline));
     VkDevice device = gpu.device;
     deletion.push([device, p] {
         vkDestroyPipeline(device, p.pipeline, nullptr);
@@ -130,12 +139,16 @@ Pipeline createPatternPipeline(const rg::Gpu& gpu, VkDescriptorSetLayout setLayo
 }
 
 // [region record_dispatch]
-void recordPattern(VkCommandBuffer cmd, const Pipeline& p, const Descriptors& d, const rg::Image& target) {
+void recordPattern(VkCommandBuffer cmd, const Pipeline& p, const Descriptors& d,
+                   const rg::Image& target) {
     rg::gpu::PatternPush push{target.extent.width, target.extent.height, 0.0f, kChecker};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &d.set, 0, nullptr);
-    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    uint32_t groupsX = (push.width + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE;  // round up
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &d.set,
+                            0, nullptr);
+    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                       &push);
+    // round up
+    uint32_t groupsX = (push.width + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE;
     uint32_t groupsY = (push.height + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE;
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
 }
@@ -143,19 +156,20 @@ void recordPattern(VkCommandBuffer cmd, const Pipeline& p, const Descriptors& d,
 
 // Window: show the image until the window closes, one frame at a time and
 // fully synchronous: acquire (wait on a fence), blit, present, wait idle.
-void showInWindow(const rg::Gpu& gpu, rg::Window& window, const rg::Image& target, rg::DeletionQueue& deletion,
-                  int frames) {
+void showInWindow(const rg::Gpu& gpu, rg::Window& window, const rg::Image& target,
+                  rg::DeletionQueue& deletion, int frames) {
     window.createSwapchain(gpu, deletion);
     VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence acquired = VK_NULL_HANDLE;
     VK_CHECK(vkCreateFence(gpu.device, &fenceInfo, nullptr, &acquired));
     VkDevice device = gpu.device;
     deletion.push([device, acquired] { vkDestroyFence(device, acquired, nullptr); });
-    for (int frame = 0; (frames == 0 || frame < frames) && !window.shouldClose(); ++frame) {
+    for (int frame = 0; (frames == 0 || frame < frames) && !window.shouldClose();
+         ++frame) {
         window.pollEvents();
         uint32_t index = 0;
-        VkResult result = vkAcquireNextImageKHR(gpu.device, window.swapchain, UINT64_MAX, VK_NULL_HANDLE,
-                                                acquired, &index);
+        VkResult result = vkAcquireNextImageKHR(gpu.device, window.swapchain, UINT64_MAX,
+                                                VK_NULL_HANDLE, acquired, &index);
         if (result == VK_ERROR_OUT_OF_DATE_KHR) {
             window.createSwapchain(gpu, deletion);
             continue;
@@ -165,23 +179,33 @@ void showInWindow(const rg::Gpu& gpu, rg::Window& window, const rg::Image& targe
         VK_CHECK(vkResetFences(gpu.device, 1, &acquired));
         VkImage swapImage = window.images[index];
         rg::submitOnce(gpu, [&](VkCommandBuffer cmd) {
-            rg::imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                             VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_ACCESS_TRANSFER_WRITE_BIT);
-            rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+            rg::imageBarrier(
+                cmd, swapImage, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+            rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_GENERAL,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_ACCESS_TRANSFER_READ_BIT);
             VkImageBlit blit{
                 .srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                .srcOffsets = {{0, 0, 0}, {int32_t(target.extent.width), int32_t(target.extent.height), 1}},
+                .srcOffsets = {{0, 0, 0},
+                               {int32_t(target.extent.width),
+                                int32_t(target.extent.height), 1}},
                 .dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                .dstOffsets = {{0, 0, 0}, {int32_t(window.extent.width), int32_t(window.extent.height), 1}},
+                .dstOffsets = {{0, 0, 0},
+                               {int32_t(window.extent.width),
+                                int32_t(window.extent.height), 1}},
             };
-            vkCmdBlitImage(cmd, target.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapImage,
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-            rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
-            rg::imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+            vkCmdBlitImage(cmd, target.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                           VK_FILTER_NEAREST);
+            rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
+            rg::imageBarrier(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                              VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                              VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
         });  // waited on a fence: the blit is done, present needs no semaphore
@@ -192,11 +216,13 @@ void showInWindow(const rg::Gpu& gpu, rg::Window& window, const rg::Image& targe
             .pImageIndices = &index,
         };
         result = vkQueuePresentKHR(gpu.queue, &present);
-        if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR || window.resized())
+        if (result == VK_ERROR_OUT_OF_DATE_KHR || result == VK_SUBOPTIMAL_KHR ||
+            window.resized())
             window.createSwapchain(gpu, deletion);
         else
             VK_CHECK(result);
-        VK_CHECK(vkQueueWaitIdle(gpu.queue));  // the simplest sync there is; chapter 02 does better
+        // the simplest sync there is; chapter 02 does better
+        VK_CHECK(vkQueueWaitIdle(gpu.queue));
     }
 }
 
@@ -204,8 +230,9 @@ void showInWindow(const rg::Gpu& gpu, rg::Window& window, const rg::Image& targe
 
 int main(int argc, char** argv) {
     rg::Options opts;
-    if (auto exit = rg::parseCommandLine(argc, argv, "01_vulkan_setup",
-                                         "RayGlass chapter 01: the Vulkan objects, one compute shader", opts))
+    if (auto exit = rg::parseCommandLine(
+            argc, argv, "01_vulkan_setup",
+            "RayGlass chapter 01: the Vulkan objects, one compute shader", opts))
         return *exit;
     return rg::runChapter(opts, [&] {
         rg::App app;
@@ -216,11 +243,15 @@ int main(int argc, char** argv) {
         // Instance: the application's connection to Vulkan (plus a window surface).
         std::vector<const char*> windowExtensions;
         if (!opts.headless) {
-            app.window = std::make_unique<rg::Window>(opts.width, opts.height, "RayGlass 01: Vulkan setup");
+            app.window = std::make_unique<rg::Window>(opts.width, opts.height,
+                                                      "RayGlass 01: Vulkan setup");
             windowExtensions = app.window->instanceExtensions();
         }
-        gpu.instance = rg::createInstance(opts.chapter, opts.validation, windowExtensions, deletion);
-        VkSurfaceKHR surface = app.window ? app.window->createSurface(gpu.instance, deletion) : VK_NULL_HANDLE;
+        gpu.instance =
+            rg::createInstance(opts.chapter, opts.validation, windowExtensions, deletion);
+        VkSurfaceKHR surface = app.window
+                                   ? app.window->createSurface(gpu.instance, deletion)
+                                   : VK_NULL_HANDLE;
 
         // Physical device: a GPU that can trace rays (and present, if windowed).
         gpu.physical = rg::pickPhysicalDevice(gpu.instance, surface, opts.device);
@@ -245,9 +276,11 @@ int main(int argc, char** argv) {
         });
 
         // The storage image the shader writes: linear RGBA, 32-bit float.
-        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});  // before any work
-        rg::Image target = rg::createImage2D(gpu, deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        // before any work
+        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});
+        rg::Image target = rg::createImage2D(
+            gpu, deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         Descriptors descriptors = createDescriptors(gpu, target, deletion);
         Pipeline pipeline = createPatternPipeline(gpu, descriptors.layout, deletion);
         // [end]
@@ -262,23 +295,28 @@ int main(int argc, char** argv) {
                 // A new image's layout is UNDEFINED; a storage image must be
                 // GENERAL before the shader writes it. The barrier changes the
                 // layout and orders the previous frame's copy before the writes.
-                rg::imageBarrier(cmd, target.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+                rg::imageBarrier(
+                    cmd, target.handle, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_GENERAL,
+                    VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
                 timer.begin(cmd, 0);
                 recordPattern(cmd, pipeline, descriptors, target);
                 timer.end(cmd, 0);
             });  // records, submits, waits on a fence
             // [end]
             times.gpuMs.push_back(timer.readMs(0));
-            times.cpuMs.push_back(
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count());
-            if (rg::interrupted()) break;  // Ctrl-C: keep the frames done (shared/interrupt.h)
+            times.cpuMs.push_back(std::chrono::duration<double, std::milli>(
+                                      std::chrono::steady_clock::now() - cpuStart)
+                                      .count());
+            // Ctrl-C: keep the frames done (shared/interrupt.h)
+            if (rg::interrupted()) break;
         }
-        std::printf("GPU time for the dispatch: %.3f ms (median of %zu)\n", rg::median(times.gpuMs),
-                    times.gpuMs.size());
+        std::printf("GPU time for the dispatch: %.3f ms (median of %zu)\n",
+                    rg::median(times.gpuMs), times.gpuMs.size());
 
-        rg::FloatImage image = rg::readImage(gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        rg::FloatImage image =
+            rg::readImage(gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         rg::writePng(opts.output, image);
         rg::writeReport(opts.report, rg::makeReport(opts, gpu, times));
         std::printf("Wrote %s and %s\n", opts.output.c_str(), opts.report.c_str());

@@ -48,56 +48,75 @@ TopBox topBox(const glm::dmat4& m) {
 }
 
 void printStatistics(const rg::UnitShapes& shapes, const rg::Tlas& tlas) {
-    std::printf("%-12s %-10s %12s %14s %10s %12s\n", "structure", "geometry", "built bytes", "compacted", "build ms",
-                "compact ms");
+    std::printf("%-12s %-10s %12s %14s %10s %12s\n", "structure", "geometry",
+                "built bytes", "compacted", "build ms", "compact ms");
     for (const auto& s : shapes.stats)
-        std::printf("%-12s %-10s %12llu %14llu %10.3f %12.3f\n", s.name.c_str(), s.geometry.c_str(),
-                    (unsigned long long)s.buildBytes, (unsigned long long)s.compactBytes, s.buildMs, s.compactMs);
-    std::printf("%-12s %-10s %12llu %14s %10.3f   (%u instances, update scratch %llu bytes)\n", "tlas",
-                "instances", (unsigned long long)tlas.buildBytes, "-", tlas.buildMs, tlas.count,
-                (unsigned long long)tlas.updateScratchBytes);
+        std::printf("%-12s %-10s %12llu %14llu %10.3f %12.3f\n", s.name.c_str(),
+                    s.geometry.c_str(), (unsigned long long)s.buildBytes,
+                    (unsigned long long)s.compactBytes, s.buildMs, s.compactMs);
+    std::printf(
+        "%-12s %-10s %12llu %14s %10.3f   (%u instances, update scratch %llu bytes)\n",
+        "tlas", "instances", (unsigned long long)tlas.buildBytes, "-", tlas.buildMs,
+        tlas.count, (unsigned long long)tlas.updateScratchBytes);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     rg::Options opts;
-    auto extra = [](CLI::App& app, rg::Options& o) { rg::addSceneOptions(app, o, false); };
-    if (auto exit = rg::parseCommandLine(argc, argv, "03_acceleration_structures",
-                                         "RayGlass chapter 03: BLAS, TLAS, compaction, refit", opts, extra))
+    auto extra = [](CLI::App& app, rg::Options& o) {
+        rg::addSceneOptions(app, o, false);
+    };
+    if (auto exit = rg::parseCommandLine(
+            argc, argv, "03_acceleration_structures",
+            "RayGlass chapter 03: BLAS, TLAS, compaction, refit", opts, extra))
         return *exit;
     return rg::runChapter(opts, [&] {
-        rg::Scene scene = rg::loadScene(opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene);
+        rg::Scene scene = rg::loadScene(
+            opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene);
         rg::refuseMeshes(scene);  // spheres and quads only, until chapter 12
         rg::App app;
         rg::initApp(app, opts, "RayGlass 03: acceleration structures");
         rg::Gpu& gpu = app.gpu;
 
         // [region build]
-        rg::UnitShapes shapes = rg::buildUnitShapes(gpu, app.deletion);                // two BLASes
+        // two BLASes
+        rg::UnitShapes shapes = rg::buildUnitShapes(gpu, app.deletion);
         // Instance k is object order[k]: the list's halves are halves in space.
-        std::vector<uint32_t> order = opts.fileOrder ? rg::fileOrder(scene) : rg::medianSplitOrder(scene);
-        std::vector<VkAccelerationStructureInstanceKHR> instances = rg::makeInstances(scene, shapes, order);
-        rg::Tlas tlas = rg::buildTlas(gpu, app.deletion, instances);                    // one TLAS
+        std::vector<uint32_t> order =
+            opts.fileOrder ? rg::fileOrder(scene) : rg::medianSplitOrder(scene);
+        std::vector<VkAccelerationStructureInstanceKHR> instances =
+            rg::makeInstances(scene, shapes, order);
+        // one TLAS
+        rg::Tlas tlas = rg::buildTlas(gpu, app.deletion, instances);
         // [end]
         printStatistics(shapes, tlas);
 
         // The top view: a compute shader reads the TLAS's instance buffer.
-        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});  // before any work
-        rg::Image target = rg::createImage2D(gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        rg::DescriptorSet set = rg::createDescriptorSet(gpu, app.deletion, {
-            {FOOTPRINT_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-            {FOOTPRINT_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        });
+        // before any work
+        rg::checkImageFits(gpu, opts.width, opts.height, {.rayTracing = false});
+        rg::Image target = rg::createImage2D(
+            gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        rg::DescriptorSet set = rg::createDescriptorSet(
+            gpu, app.deletion,
+            {
+                {FOOTPRINT_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                 VK_SHADER_STAGE_COMPUTE_BIT},
+                {FOOTPRINT_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                 VK_SHADER_STAGE_COMPUTE_BIT},
+            });
         rg::writeStorageImage(gpu, set.set, FOOTPRINT_BINDING_TARGET, target.view);
-        rg::writeBuffer(gpu, set.set, FOOTPRINT_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, tlas.instances);
-        VkPipelineLayout layout = rg::createPipelineLayout(gpu, app.deletion, set.layout, sizeof(rg::gpu::FootprintPush),
+        rg::writeBuffer(gpu, set.set, FOOTPRINT_BINDING_INSTANCES,
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, tlas.instances);
+        VkPipelineLayout layout = rg::createPipelineLayout(gpu, app.deletion, set.layout,
+                                                           sizeof(rg::gpu::FootprintPush),
                                                            VK_SHADER_STAGE_COMPUTE_BIT);
-        VkPipeline pipeline = rg::createComputePipeline(gpu, app.deletion, layout,
-                                                        "03_acceleration_structures/footprint.comp");
+        VkPipeline pipeline = rg::createComputePipeline(
+            gpu, app.deletion, layout, "03_acceleration_structures/footprint.comp");
 
-        // The view covers every object's box (at any motion) with a margin, at the image's aspect.
+        // The view covers every object's box (at any motion) with a margin, at the
+        // image's aspect.
         double minX = 1e300, minZ = 1e300, maxX = -1e300, maxZ = -1e300;
         for (const auto& o : scene.objects) {
             TopBox b = topBox(o.transform);
@@ -107,64 +126,91 @@ int main(int argc, char** argv) {
         }
         double spanX = (maxX - minX) * 1.1, spanZ = (maxZ - minZ) * 1.1;
         double aspect = double(opts.width) / opts.height;
-        if (spanX / spanZ < aspect) spanX = spanZ * aspect; else spanZ = spanX / aspect;
-        glm::vec4 bounds(float(0.5 * (minX + maxX) - 0.5 * spanX), float(0.5 * (minZ + maxZ) - 0.5 * spanZ),
-                         float(spanX), float(spanZ));
+        if (spanX / spanZ < aspect) spanX = spanZ * aspect;
+        else spanZ = spanX / aspect;
+        glm::vec4 bounds(float(0.5 * (minX + maxX) - 0.5 * spanX),
+                         float(0.5 * (minZ + maxZ) - 0.5 * spanZ), float(spanX),
+                         float(spanZ));
 
         // [region per_frame]
         uint32_t lastFrame = 0;
         const uint32_t slots = rg::FrameLoop::kFramesInFlight;
-        rg::GpuTimer refitTimer(gpu, app.deletion, slots);  // the refit alone: what moving costs
+        // the refit alone: what moving costs
+        rg::GpuTimer refitTimer(gpu, app.deletion, slots);
         std::vector<double> refitMs;
         std::vector<uint32_t> moving;  // the instances that move
         for (uint32_t k = 0; k < order.size(); ++k)
             if (scene.objects[order[k]].moving) moving.push_back(k);
-        rg::FrameLoop loop(gpu, app.window.get(), target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, app.deletion);
-        rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd, uint32_t frame) {
+        rg::FrameLoop loop(gpu, app.window.get(), target,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, app.deletion);
+        rg::FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd,
+                                                                uint32_t frame) {
             // The loop waited for the frame that last used this slot: its time is ready.
             if (frame >= slots) refitMs.push_back(refitTimer.readMs(frame % slots));
             for (uint32_t k : moving)  // new transforms for moving objects only
-                instances[k].transform = rg::toVkTransform(movedTransform(scene.objects[order[k]], frame));
+                instances[k].transform =
+                    rg::toVkTransform(movedTransform(scene.objects[order[k]], frame));
             refitTimer.begin(cmd, frame % slots);
-            rg::recordTlasUpdate(cmd, tlas, instances, moving, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);  // refit
+            // refit
+            rg::recordTlasUpdate(cmd, tlas, instances, moving,
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
             refitTimer.end(cmd, frame % slots);
 
-            rg::gpu::FootprintPush push{bounds, uint32_t(opts.width), uint32_t(opts.height), tlas.count, 0};
+            rg::gpu::FootprintPush push{bounds, uint32_t(opts.width),
+                                        uint32_t(opts.height), tlas.count, 0};
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set.set, 0, nullptr);
-            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1,
+                                    &set.set, 0, nullptr);
+            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                               &push);
             vkCmdDispatch(cmd, (push.width + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE,
                           (push.height + PATTERN_GROUP_SIZE - 1) / PATTERN_GROUP_SIZE, 1);
             lastFrame = frame;
         });
         // [end]
         uint32_t recorded = uint32_t(times.gpuMs.size());  // frames recorded, each timed
-        for (uint32_t i = std::min(recorded, slots); i > 0; --i)  // the last frames' (the device is idle)
+        // the last frames' (the device is idle)
+        for (uint32_t i = std::min(recorded, slots); i > 0; --i)
             refitMs.push_back(refitTimer.readMs((recorded - i) % slots));
-        std::printf("median frame (refit + top view): GPU %.3f ms over %zu frames; the refit alone %.3f ms\n",
-                    rg::median(times.gpuMs), times.gpuMs.size(), rg::median(refitMs));
+        std::printf(
+            "median frame (refit + top view): GPU %.3f ms over %zu frames; the refit "
+            "alone %.3f ms\n",
+            rg::median(times.gpuMs), times.gpuMs.size(), rg::median(refitMs));
 
-        if (rg::interrupted() && times.gpuMs.empty()) return;  // Ctrl-C before the first frame: nothing to write
-        rg::FloatImage image = rg::readImage(gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        // Ctrl-C before the first frame: nothing to write
+        if (rg::interrupted() && times.gpuMs.empty()) return;
+        rg::FloatImage image =
+            rg::readImage(gpu, target, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         rg::writePng(opts.output, image);
         nlohmann::json report = rg::makeReport(opts, gpu, times);
         report["scene"] = scene.path;
         for (const auto& s : shapes.stats)
-            report["blas"].push_back({{"name", s.name}, {"geometry", s.geometry}, {"size_bytes", s.buildBytes},
-                                      {"compacted_bytes", s.compactBytes}, {"build_ms", s.buildMs},
+            report["blas"].push_back({{"name", s.name},
+                                      {"geometry", s.geometry},
+                                      {"size_bytes", s.buildBytes},
+                                      {"compacted_bytes", s.compactBytes},
+                                      {"build_ms", s.buildMs},
                                       {"compact_ms", s.compactMs}});
-        report["tlas"] = {{"instances", tlas.count}, {"size_bytes", tlas.buildBytes},
-                          {"update_scratch_bytes", tlas.updateScratchBytes}, {"build_ms", tlas.buildMs},
+        report["tlas"] = {{"instances", tlas.count},
+                          {"size_bytes", tlas.buildBytes},
+                          {"update_scratch_bytes", tlas.updateScratchBytes},
+                          {"build_ms", tlas.buildMs},
                           {"update_ms", rg::median(refitMs)},
                           {"update", "refit in place every frame (mode UPDATE)"}};
-        report["top_view"] = {{"x0", bounds.x}, {"z0", bounds.y}, {"width", bounds.z}, {"depth", bounds.w},
+        report["top_view"] = {{"x0", bounds.x},
+                              {"z0", bounds.y},
+                              {"width", bounds.z},
+                              {"depth", bounds.w},
                               {"last_frame", lastFrame}};
         for (uint32_t i : order) {  // in TLAS order, as the top view reads them
             const rg::Object& o = scene.objects[i];
             TopBox b = topBox(o.moving ? movedTransform(o, lastFrame) : o.transform);
-            report["instances"].push_back({{"object", i}, {"shape", o.type == rg::ShapeType::Sphere ? "sphere" : "quad"},
-                                           {"moving", o.moving}, {"box_min_xz", {b.minX, b.minZ}},
-                                           {"box_max_xz", {b.maxX, b.maxZ}}});
+            report["instances"].push_back(
+                {{"object", i},
+                 {"shape", o.type == rg::ShapeType::Sphere ? "sphere" : "quad"},
+                 {"moving", o.moving},
+                 {"box_min_xz", {b.minX, b.minZ}},
+                 {"box_max_xz", {b.maxX, b.maxZ}}});
         }
         rg::writeReport(opts.report, report);
         std::printf("Wrote %s and %s\n", opts.output.c_str(), opts.report.c_str());

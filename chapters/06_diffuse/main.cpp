@@ -8,17 +8,21 @@
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {
         .name = "06_diffuse",
-        .description = "RayGlass chapter 06: diffuse light with a shadow ray to every light",
+        .description = "RayGlass chapter 06: diffuse light with a shadow ray"
+                       " to every light",
         .title = "RayGlass 06: diffuse",
         .stage = rg::ReferenceStage::Diffuse,
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {
             rg::Param& epsilon = params.number(
                 "--fixed-epsilon", s.epsilon,
-                "Experiment: start shadow rays at p + E*n instead of the robust offset (0: robust)", 0, 0.1);
+                "Experiment: start shadow rays at p + E*n instead of the robust offset"
+                " (0: robust)",
+                0, 0.1);
             epsilon.logarithmic = true;  // a slider down to 1e-9 and below
             epsilon.check = [](const std::string& v) {  // a distance: finite and > 0
                 double e = std::strtod(v.c_str(), nullptr);
-                return e > 0 && e < 1e30 ? std::string() : "must be a positive distance, not " + v;
+                return e > 0 && e < 1e30 ? std::string()
+                                         : "must be a positive distance, not " + v;
             };
         },
     });

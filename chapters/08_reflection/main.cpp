@@ -8,6 +8,8 @@ int main(int argc, char** argv) {
         .description = "RayGlass chapter 08: mirror reflection, bounces in a loop",
         .title = "RayGlass 08: reflection",
         .stage = rg::ReferenceStage::Reflection,
-        .options = [](rg::Params& params, rg::RtChapterSettings& s) { rg::addDepthOption(params, s, 5); },
+        .options = [](rg::Params& params, rg::RtChapterSettings& s) {
+            rg::addDepthOption(params, s, 5);
+        },
     });
 }

@@ -8,7 +8,8 @@
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {
         .name = "11_rough",
-        .description = "RayGlass chapter 11: rough reflections, sample patterns, progressive accumulation",
+        .description = "RayGlass chapter 11: rough reflections, sample patterns,"
+                       " progressive accumulation",
         .title = "RayGlass 11: rough surfaces",
         .stage = rg::ReferenceStage::Rough,
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {

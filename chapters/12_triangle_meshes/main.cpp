@@ -14,12 +14,15 @@
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {
         .name = "12_triangle_meshes",
-        .description = "RayGlass chapter 12: triangle meshes from glTF and OBJ files, watertight glass",
+        .description = "RayGlass chapter 12: triangle meshes from glTF and OBJ files,"
+                       " watertight glass",
         .title = "RayGlass 12: triangle meshes",
         .stage = rg::ReferenceStage::Rough,
-        .raygenFolder = "11_rough",  // the shading is chapter 11's; what is new is the geometry
+        // The shading is chapter 11's; what is new is the geometry.
+        .raygenFolder = "11_rough",
         .meshes = true,
-        .scene = "meshes",  // a lens, a prism, a slab and a wine glass (tools/make_meshes.cpp)
+        // A lens, a prism, a slab and a wine glass (tools/make_meshes.cpp).
+        .scene = "meshes",
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {
             rg::addDepthOption(params, s, 6);
             rg::addFresnelOption(params, s);

@@ -12,11 +12,13 @@
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {
         .name = "13_real_glass",
-        .description = "RayGlass chapter 13: real glass, nested media, absorption and dispersion",
+        .description = "RayGlass chapter 13: real glass, nested media, absorption"
+                       " and dispersion",
         .title = "RayGlass 13: real glass",
         .stage = rg::ReferenceStage::Media,
         .meshes = true,
-        .scene = "real_glass",  // a glass of water with ice, a bubble in glass, coloured glass
+        // A glass of water with ice, a bubble in glass, coloured glass.
+        .scene = "real_glass",
         .options = [](rg::Params& params, rg::RtChapterSettings& s) {
             rg::addDepthOption(params, s, 8);
             s.fresnelMode = 2;  // exact: between two media Schlick's f0 would be wrong

@@ -8,16 +8,20 @@
 
 layout(local_size_x = PATTERN_GROUP_SIZE, local_size_y = PATTERN_GROUP_SIZE) in;
 layout(binding = FOOTPRINT_BINDING_TARGET, rgba32f) uniform writeonly image2D target;
-layout(binding = FOOTPRINT_BINDING_INSTANCES, std430) readonly buffer Instances { InstanceRecord instances[]; };
+layout(binding = FOOTPRINT_BINDING_INSTANCES, std430) readonly buffer Instances {
+    InstanceRecord instances[];
+};
 layout(push_constant) uniform Push { FootprintPush pc; };
 
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (pixel.x >= pc.width || pixel.y >= pc.height) return;
     vec2 uv = (vec2(pixel) + 0.5) / vec2(pc.width, pc.height);
-    vec2 world = pc.bounds.xy + uv * pc.bounds.zw;  // (x, z), z grows downward in the image
+    // (x, z), z grows downward in the image
+    vec2 world = pc.bounds.xy + uv * pc.bounds.zw;
     vec3 color = vec3(0.05);
-    if (fract(world.x) < 0.02 || fract(world.y) < 0.02) color = vec3(0.15);  // 1-unit grid
+    // 1-unit grid
+    if (fract(world.x) < 0.02 || fract(world.y) < 0.02) color = vec3(0.15);
     // Where boxes overlap, the smallest shows: the floor's box holds every
     // sphere's, and drawn over them it would hide them all.
     float smallest = 1e30;
@@ -31,7 +35,9 @@ void main() {
         if (all(lessThanEqual(d, half_)) && half_.x * half_.y < smallest) {
             smallest = half_.x * half_.y;
             color = instanceColor(r.customIndexAndMask & 0xFFFFFFu);
-            if (any(greaterThan(d, half_ - pc.bounds.z / float(pc.width) * 1.5))) color *= 0.5;  // outline
+            // outline
+            if (any(greaterThan(d, half_ - pc.bounds.z / float(pc.width) * 1.5)))
+                color *= 0.5;
         }
     }
     imageStore(target, ivec2(pixel), vec4(color, 1.0));

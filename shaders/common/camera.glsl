@@ -15,10 +15,13 @@ float eyeTmin() { return camera.eye.x; }
 
 // [region camera_ray]
 // `offset`: where in the pixel the ray passes, (0.5, 0.5) at its centre.
-void cameraRay(uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin, out vec3 direction) {
-    vec2 ndc = (vec2(pixel) + offset) / vec2(size) * 2.0 - 1.0;  // -1..1; y = -1: the top row
+void cameraRay(uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin,
+               out vec3 direction) {
+    // -1..1; y = -1: the top row
+    vec2 ndc = (vec2(pixel) + offset) / vec2(size) * 2.0 - 1.0;
     origin = (camera.viewInverse * vec4(0, 0, 0, 1)).xyz;
-    vec4 target = camera.projInverse * vec4(ndc.x, ndc.y, 1, 1);  // Vulkan clip space: y down
+    // Vulkan clip space: y down
+    vec4 target = camera.projInverse * vec4(ndc.x, ndc.y, 1, 1);
     direction = (camera.viewInverse * vec4(normalize(target.xyz), 0)).xyz;
 }
 // [end]
@@ -31,7 +34,8 @@ void cameraRay(uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin, out vec3 d
 // alone, so a window that rested for N frames shows what a headless run of
 // N frames writes. Without --antialias: the centre.
 vec2 pixelOffset(uvec2 pixel) {
-    return kAverages && push.antialias != 0u ? pixelJitter(pixel, push.accumulated) : vec2(0.5);
+    return kAverages && push.antialias != 0u ? pixelJitter(pixel, push.accumulated)
+                                             : vec2(0.5);
 }
 // [end]
 #endif

@@ -6,9 +6,9 @@
 // |t d|, |M| times them and |T| (PBRT-v4, section 6.8: error bounds from
 // the intersection computation). A sphere's far root (a ray from inside)
 // is found less exactly than its near one, to about the float spacing of
-// the sphere's own size: sphere.rchit adds that. The factor 16 covers those few roundings,
-// the rounding of t itself, and a margin. Nothing here depends on the rest
-// of the scene: a far or a huge object changes only its own hits' bounds.
+// the sphere's own size: sphere.rchit adds that. The factor 16 covers those few
+// roundings, the rounding of t itself, and a margin. Nothing here depends on the rest of
+// the scene: a far or a huge object changes only its own hits' bounds.
 #ifndef HIT_ERROR_GLSL
 #define HIT_ERROR_GLSL
 // [region hit_error]

@@ -10,7 +10,8 @@
 #define MEDIA_GLSL
 #include "spectrum.glsl"
 
-#define MEDIA_DEPTH 4u  // media a ray can be inside at once; entering a fifth forgets the first
+// media a ray can be inside at once; entering a fifth forgets the first
+#define MEDIA_DEPTH 4u
 
 // [region stack]
 uint mediumEntry(uint media, uint i) { return (media >> (8u * i)) & 0xFFu; }
@@ -37,7 +38,8 @@ uint leaveMedium(uint media, uint material) {
     for (uint i = 0u; i < MEDIA_DEPTH; ++i) {
         if (mediumEntry(media, i) != material + 1u) continue;
         uint below = media & ((1u << (8u * i)) - 1u);               // entered after it
-        uint above = i + 1u < MEDIA_DEPTH ? media >> (8u * (i + 1u)) : 0u;  // entered before it
+        // entered before it
+        uint above = i + 1u < MEDIA_DEPTH ? media >> (8u * (i + 1u)) : 0u;
         return below | (above << (8u * i));
     }
     return media;
@@ -45,9 +47,15 @@ uint leaveMedium(uint media, uint material) {
 // [end]
 
 float mediumIor(uint id) { return id == 0u ? 1.0 : materials[id - 1u].params.w; }
-vec3 mediumAbsorption(uint id) { return id == 0u ? vec3(0.0) : materials[id - 1u].medium.rgb; }
-vec2 mediumDispersion(uint id) { return id == 0u ? vec2(0.0) : materials[id - 1u].extra.zw; }
-float mediumIorAt(uint id, float nm) { return id == 0u ? 1.0 : indexAt(materials[id - 1u], nm); }
+vec3 mediumAbsorption(uint id) {
+    return id == 0u ? vec3(0.0) : materials[id - 1u].medium.rgb;
+}
+vec2 mediumDispersion(uint id) {
+    return id == 0u ? vec2(0.0) : materials[id - 1u].extra.zw;
+}
+float mediumIorAt(uint id, float nm) {
+    return id == 0u ? 1.0 : indexAt(materials[id - 1u], nm);
+}
 
 // [region boundary]
 // What a ray inside `media` meets where it enters or leaves `material`: the
@@ -66,7 +74,8 @@ Boundary boundaryAt(uint media, uint material, bool entering) {
     b.from = currentMedium(media);
     b.beyond = entering ? enterMedium(media, material) : leaveMedium(media, material);
     b.to = currentMedium(b.beyond);
-    if (!entering && b.beyond == media) b.from = material + 1u;  // leaving what it never entered: chapter 10's view
+    // leaving what it never entered: chapter 10's view
+    if (!entering && b.beyond == media) b.from = material + 1u;
     b.n1 = mediumIor(b.from);
     b.n2 = mediumIor(b.to);
     b.real = b.n1 != b.n2 || mediumAbsorption(b.from) != mediumAbsorption(b.to)

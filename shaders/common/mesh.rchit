@@ -16,14 +16,20 @@
 #include "texture.glsl"
 
 // [region buffers]
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Floats { float f[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices { uint i[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Floats {
+    float f[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices {
+    uint i[];
+};
 layout(binding = RT_BINDING_MESHES, std430) readonly buffer Meshes { GpuMesh meshes[]; };
 
 vec3 vec3At(Floats data, uint vertex) {
     return vec3(data.f[3u * vertex], data.f[3u * vertex + 1u], data.f[3u * vertex + 2u]);
 }
-vec2 vec2At(Floats data, uint vertex) { return vec2(data.f[2u * vertex], data.f[2u * vertex + 1u]); }
+vec2 vec2At(Floats data, uint vertex) {
+    return vec2(data.f[2u * vertex], data.f[2u * vertex + 1u]);
+}
 // [end]
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
@@ -37,7 +43,8 @@ void main() {
     uvec3 v = uvec3(indices.i[3u * gl_PrimitiveID], indices.i[3u * gl_PrimitiveID + 1u],
                     indices.i[3u * gl_PrimitiveID + 2u]);
     Floats positions = Floats(mesh.vertices);
-    vec3 a = vec3At(positions, v.x), b = vec3At(positions, v.y), c = vec3At(positions, v.z);
+    vec3 a = vec3At(positions, v.x), b = vec3At(positions, v.y),
+         c = vec3At(positions, v.z);
     vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
     vec3 local = w.x * a + w.y * b + w.z * c;  // on the flat triangle
     // Counter-clockwise seen from outside: b - a, c - a, and their cross
@@ -46,7 +53,8 @@ void main() {
     payload.shading = payload.normal;
     if (mesh.normals != uvec2(0u)) {  // smooth: the vertex normals, interpolated
         Floats normals = Floats(mesh.normals);
-        vec3 n = w.x * vec3At(normals, v.x) + w.y * vec3At(normals, v.y) + w.z * vec3At(normals, v.z);
+        vec3 n = w.x * vec3At(normals, v.x) + w.y * vec3At(normals, v.y) +
+                 w.z * vec3At(normals, v.z);
         vec3 world = n * mat3(gl_WorldToObjectEXT);
         if (dot(world, world) > 0.0) payload.shading = normalize(world);
     }
@@ -71,7 +79,8 @@ void main() {
     uvec4 texture = materials[object.material].texture;
     if (texture.z != 0u && mesh.texcoords != uvec2(0u)) {
         Floats uvs = Floats(mesh.texcoords);
-        vec2 uv = w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
+        vec2 uv =
+            w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
         payload.radiance = sampleTexture(texture, uv);
     }
     // [end]

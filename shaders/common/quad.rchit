@@ -15,8 +15,9 @@ void main() {
     vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
     local.y = 0.0;  // exactly on the unit quad's plane
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    payload.error = hitError(rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT),
-                             gl_ObjectToWorldEXT, payload.normal);
+    payload.error = hitError(
+        rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT),
+        gl_ObjectToWorldEXT, payload.normal);
     payload.object = gl_InstanceCustomIndexEXT;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
     payload.shading = payload.normal;  // flat or analytic: one normal

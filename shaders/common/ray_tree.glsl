@@ -8,7 +8,8 @@
 
 #define MAX_DEPTH 8                // --depth is at most this
 #define MIN_THROUGHPUT 1e-4        // branches carrying less light are not traced
-#define MAX_PASSES 256             // chapter 13: surfaces a tree may cross where no medium changes
+// chapter 13: surfaces a tree may cross where no medium changes
+#define MAX_PASSES 256
 
 // [region split]
 struct Split {
@@ -20,7 +21,8 @@ struct Split {
 // Going from index n1 into n2.
 Split splitBetween(GpuMaterial m, float n1, float n2, vec3 n, vec3 direction) {
     float transmission = m.params.z;
-    float F = fresnel(push.fresnelMode, m.extra.x, dot(n, -direction), n1, n2);  // 1 under total internal reflection
+    // 1 under total internal reflection
+    float F = fresnel(push.fresnelMode, m.extra.x, dot(n, -direction), n1, n2);
     Split s;
     s.reflected = transmission * F + (1.0 - transmission) * m.params.y;
     s.refracted = transmission * (1.0 - F);  // R + T = 1 for the dielectric part
@@ -33,8 +35,9 @@ Split splitBetween(GpuMaterial m, float n1, float n2, vec3 n, vec3 direction) {
 // Chapters 09-12: every glass has air outside (chapter 13: media.glsl).
 Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     float ior = m.params.w;
-    return entering ? splitBetween(m, 1.0, ior, n, direction)   // air into the glass
-                    : splitBetween(m, ior, 1.0, n, direction);  // leaving: the ratio inverts
+    // Entering: air into the glass; leaving: the ratio inverts.
+    return entering ? splitBetween(m, 1.0, ior, n, direction)
+                    : splitBetween(m, ior, 1.0, n, direction);
 }
 // [end]
 
@@ -85,12 +88,14 @@ struct Tree {
     vec3 radiance;
     uint rays;
     uint passes;  // chapter 13: surfaces crossed without a change of medium (MAX_PASSES)
-    float wavelength;  // chapter 13: the one wavelength (nm) of the branches that met dispersion
+    // chapter 13: the one wavelength (nm) of the branches that met dispersion
+    float wavelength;
 };
 Tree tree;
 
 void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
-    tree.stack[0] = Branch(origin, depth, direction, kInfinity, throughput, 0u);  // in air (chapter 13)
+    // in air (chapter 13)
+    tree.stack[0] = Branch(origin, depth, direction, kInfinity, throughput, 0u);
     tree.top = 1;
     tree.passes = 0u;
     tree.radiance = vec3(0.0);
@@ -101,13 +106,16 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
 // pushes its own reflected and refracted branches.
 void growBranch() {
     Branch b = tree.stack[--tree.top];
-    uint spectral = b.depth & BRANCH_SPECTRAL;  // chapter 13: its light is one wavelength's
+    // chapter 13: its light is one wavelength's
+    uint spectral = b.depth & BRANCH_SPECTRAL;
     b.depth &= ~BRANCH_SPECTRAL;
-    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);  // depth 0: a camera ray
+    // depth 0: a camera ray
+    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);
     ++tree.rays;
     vec3 throughput = b.throughput;
 #ifdef NESTED_MEDIA
-    throughput *= transmittance(b.media, payload.t);  // chapter 13: absorbed on the way (Beer-Lambert)
+    // chapter 13: absorbed on the way (Beer-Lambert)
+    throughput *= transmittance(b.media, payload.t);
 #endif
     if (payload.t < 0.0) {
         tree.radiance += throughput * payload.radiance;
@@ -115,35 +123,41 @@ void growBranch() {
     }
     GpuMaterial m = hitMaterial();  // a mesh's texture tints it (ch 12)
     vec3 n = facingNormal(payload.normal, b.direction);
-    vec3 ns = facingShading(payload.shading, payload.normal, b.direction);  // = n but on meshes
+    // = n but on meshes
+    vec3 ns = facingShading(payload.shading, payload.normal, b.direction);
     vec3 p = payload.position;
     float e = payload.error;
     float radius = objects[payload.object].radius;  // 0: not a sphere
     bool entering = payload.frontFace == 1u;  // from the hit kind on meshes (chapter 12)
-    float n1 = entering ? 1.0 : m.params.w, n2 = entering ? m.params.w : 1.0;  // air outside (ch 10)
+    // air outside (ch 10)
+    float n1 = entering ? 1.0 : m.params.w, n2 = entering ? m.params.w : 1.0;
     uint beyond = b.media;  // the media of a ray that crosses here (chapter 13)
     // [region media]
 #ifdef NESTED_MEDIA
     if (m.params.z > 0.0) {  // chapter 13: a medium's surface; which two media meet here?
-        Boundary boundary = boundaryAt(b.media, objects[payload.object].material, entering);
-        if (!boundary.real) {  // no surface: the ray goes on into its new media, as deep as before
+        Boundary boundary =
+            boundaryAt(b.media, objects[payload.object].material, entering);
+        // no surface: the ray goes on into its new media, as deep as before
+        if (!boundary.real) {
             vec3 o = secondaryOrigin(p, e, -n);
             float tMax = entering ? insideReach(o, p, radius) : kInfinity;
             if (tree.passes++ < MAX_PASSES)
-                tree.stack[tree.top++] =
-                    Branch(o, b.depth | spectral, b.direction, tMax, throughput, boundary.beyond);
+                tree.stack[tree.top++] = Branch(o, b.depth | spectral, b.direction, tMax,
+                                                throughput, boundary.beyond);
             return;
         }
         n1 = boundary.n1, n2 = boundary.n2, beyond = boundary.beyond;
         // [region dispersion]
-        if (mediumDispersion(boundary.from) != vec2(0.0) || mediumDispersion(boundary.to) != vec2(0.0)) {
+        if (mediumDispersion(boundary.from) != vec2(0.0) ||
+            mediumDispersion(boundary.to) != vec2(0.0)) {
             // The indices at the path's wavelength. The first time, the branch's
             // light becomes that wavelength's (spectrum.glsl), unless every path
             // has the one wavelength of --wavelength.
             n1 = mediumIorAt(boundary.from, tree.wavelength);
             n2 = mediumIorAt(boundary.to, tree.wavelength);
             bool oneWavelength = push.wavelength >= SPECTRUM_MIN_NM;
-            if (spectral == 0u && !oneWavelength) throughput *= spectralWeight(tree.wavelength);
+            if (spectral == 0u && !oneWavelength)
+                throughput *= spectralWeight(tree.wavelength);
             spectral = BRANCH_SPECTRAL;
         }
         // [end]
@@ -152,16 +166,20 @@ void growBranch() {
     // [end]
     Split s = splitBetween(m, n1, n2, ns, b.direction);
     if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
-        tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local, s.highlight, tree.rays);
+        tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local,
+                                                   s.highlight, tree.rays);
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
-        // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 / n2.
-        vec3 t = refractedDirection(b.direction, n, ns, s.eta), o = secondaryOrigin(p, e, -n);
+        // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 /
+        // n2.
+        vec3 t = refractedDirection(b.direction, n, ns, s.eta),
+             o = secondaryOrigin(p, e, -n);
         float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
         uint depth = (b.depth + 1u) | spectral;
-        if (t != vec3(0.0)) tree.stack[tree.top++] = Branch(o, depth, t, tMax, tr, beyond);
+        if (t != vec3(0.0))
+            tree.stack[tree.top++] = Branch(o, depth, t, tMax, tr, beyond);
         else rf += tr;  // only a mesh's flat triangle can reflect it all (sides above)
     }
     // [end]
@@ -169,13 +187,15 @@ void growBranch() {
         vec3 o = secondaryOrigin(p, e, n);
         float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
         vec3 r = reflectedDirection(b.direction, n, ns);
-        tree.stack[tree.top++] = Branch(o, (b.depth + 1u) | spectral, r, tMax, rf, b.media);
+        tree.stack[tree.top++] =
+            Branch(o, (b.depth + 1u) | spectral, r, tMax, rf, b.media);
     }
 }
 
 // The light arriving along one ray, following reflections and refractions
 // to the depth limit; `rays` counts every ray traced.
-vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, inout uint rays) {
+vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput,
+               inout uint rays) {
     plantTree(origin, direction, depth, throughput, rays);
     while (tree.top > 0) growBranch();
     rays = tree.rays;

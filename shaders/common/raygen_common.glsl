@@ -4,16 +4,20 @@
 #ifndef RAYGEN_COMMON_GLSL
 #define RAYGEN_COMMON_GLSL
 layout(binding = RT_BINDING_TARGET, rgba32f) uniform image2D target;
-layout(binding = RT_BINDING_RAY_COUNT, std430) writeonly buffer RayCount { uint rayCount[]; };
+layout(binding = RT_BINDING_RAY_COUNT, std430) writeonly buffer RayCount {
+    uint rayCount[];
+};
 layout(location = 0) rayPayloadEXT HitPayload payload;
 
 // The closest hit along the ray into `payload` (a miss leaves the sky's radiance).
 void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax) {
-    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin, tMin, direction,
-                tMax, 0);
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin,
+                tMin, direction, tMax, 0);
 }
 
-void traceClosest(vec3 origin, float tMin, vec3 direction) { traceClosest(origin, tMin, direction, kInfinity); }
+void traceClosest(vec3 origin, float tMin, vec3 direction) {
+    traceClosest(origin, tMin, direction, kInfinity);
+}
 
 // The geometric normal turned toward the ray's origin: opaque surfaces are
 // lit on the side they are seen from.
@@ -55,7 +59,8 @@ void writePixelAt(uvec2 pixel, vec3 color, uint rays) {
         vec3 mean = imageLoad(target, ivec2(pixel)).rgb / push.exposure;
         color = mix(mean, color, 1.0 / float(push.accumulated + 1u));
     }
-    imageStore(target, ivec2(pixel), vec4(color * push.exposure, 1.0));  // --exposure: 1 unless asked
+    // --exposure: 1 unless asked
+    imageStore(target, ivec2(pixel), vec4(color * push.exposure, 1.0));
     rayCount[pixel.y * uint(imageSize(target).x) + pixel.x] = rays;
 }
 // [end]

@@ -8,8 +8,12 @@
 layout(binding = RT_BINDING_TLAS) uniform accelerationStructureEXT tlas;
 // [end]
 layout(binding = RT_BINDING_CAMERA, std140) uniform CameraBlock { RtCamera camera; };
-layout(binding = RT_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
-layout(binding = RT_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(binding = RT_BINDING_OBJECTS, std430) readonly buffer Objects {
+    GpuObject objects[];
+};
+layout(binding = RT_BINDING_MATERIALS, std430) readonly buffer Materials {
+    GpuMaterial materials[];
+};
 layout(binding = RT_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
 layout(binding = RT_BINDING_SKY, std430) readonly buffer Sky { vec4 skyTexels[]; };
 layout(push_constant) uniform PushBlock { RtPush push; };

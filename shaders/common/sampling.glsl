@@ -6,8 +6,10 @@
 #define SAMPLING_GLSL
 #define PATTERN_UNIFORM 0u     // independent random points
 #define PATTERN_STRATIFIED 1u  // one jittered point per cell of a sqrt(N) x sqrt(N) grid
-#define PATTERN_HAMMERSLEY 2u  // low-discrepancy (i/N, radical inverse of i), rotated per pixel
-#define PATTERN_SOBOL 3u       // one Owen-scrambled Sobol sequence per pixel, continued across frames
+// low-discrepancy (i/N, radical inverse of i), rotated per pixel
+#define PATTERN_HAMMERSLEY 2u
+// one Owen-scrambled Sobol sequence per pixel, continued across frames
+#define PATTERN_SOBOL 3u
 
 // PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
 uint pcgHash(uint v) {
@@ -17,7 +19,9 @@ uint pcgHash(uint v) {
 }
 float toUnit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }  // [0, 1)
 
-uint pixelSeed(uvec2 pixel, uint frame) { return pcgHash(pixel.x + pcgHash(pixel.y + pcgHash(frame))); }
+uint pixelSeed(uvec2 pixel, uint frame) {
+    return pcgHash(pixel.x + pcgHash(pixel.y + pcgHash(frame)));
+}
 
 // [region sobol]
 // The 2D Sobol sequence is a (0,2)-sequence: every aligned block of 2^k
@@ -37,7 +41,8 @@ uint sobolSecond(uint i) {
 // (0,2) property and decorrelates pixels. Laine-Karras hash with the
 // constants of Burley, "Practical Hash-based Owen Scrambling", JCGT 2020.
 uint owenScramble(uint x, uint seed) {
-    x = bitfieldReverse(x);  // the hash carries from low bits to high: mirror so the top bits lead
+    // the hash carries from low bits to high: mirror so the top bits lead
+    x = bitfieldReverse(x);
     x += seed;
     x ^= x * 0x6c50b47cu;
     x ^= x * 0xb82f1e52u;
@@ -58,22 +63,27 @@ vec2 sobolPoint(uint index, uint seed) {
 // Chapter 04's antialiasing: point k in [0,1)^2 of the pixel's own sequence
 // (a stream of seeds no frame number reaches, so no chapter 11 lobe shares it).
 #define JITTER_STREAM 0xA511E9B3u
-vec2 pixelJitter(uvec2 pixel, uint k) { return sobolPoint(k, pixelSeed(pixel, JITTER_STREAM)); }
+vec2 pixelJitter(uvec2 pixel, uint k) {
+    return sobolPoint(k, pixelSeed(pixel, JITTER_STREAM));
+}
 // [end]
 
 // [region patterns]
 // Point i of n in [0,1)^2. For Sobol, i is the index in the pixel's sequence.
 vec2 samplePoint(uint pattern, uint i, uint n, uint seed) {
     if (pattern == PATTERN_SOBOL) return sobolPoint(i, seed);
-    vec2 random = vec2(toUnit(pcgHash(seed + 2u * i)), toUnit(pcgHash(seed + 2u * i + 1u)));
+    vec2 random =
+        vec2(toUnit(pcgHash(seed + 2u * i)), toUnit(pcgHash(seed + 2u * i + 1u)));
     if (pattern == PATTERN_STRATIFIED) {
         uint s = uint(sqrt(float(n)) + 0.5);
         if (s * s > n) --s;
-        if (i < s * s) return (vec2(i % s, i / s) + random) / float(s);  // jitter inside cell i
+        // jitter inside cell i
+        if (i < s * s) return (vec2(i % s, i / s) + random) / float(s);
         return random;  // n not a square: the remainder is random
     }
     if (pattern == PATTERN_HAMMERSLEY) {
-        vec2 p = vec2((float(i) + 0.5) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);
+        vec2 p = vec2((float(i) + 0.5) / float(n),
+                      float(bitfieldReverse(i)) * 2.3283064365386963e-10);
         vec2 shift = vec2(toUnit(pcgHash(seed)), toUnit(pcgHash(seed ^ 0x9E3779B9u)));
         return fract(p + shift);  // Cranley-Patterson rotation: a different set per pixel
     }
@@ -89,7 +99,8 @@ vec3 lobeDirection(vec3 r, float roughness, vec2 u) {
     float cosTheta = 1.0 - u.x * (1.0 - cosMax);
     float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
     float phi = 2.0 * kPi * u.y;
-    // An orthonormal basis around r (Duff et al., "Building an Orthonormal Basis, Revisited", 2017).
+    // An orthonormal basis around r (Duff et al., "Building an Orthonormal Basis,
+    // Revisited", 2017).
     float s = r.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (s + r.z), b = r.x * r.y * a;
     vec3 t1 = vec3(1.0 + s * r.x * r.x * a, s * b, -s * r.x);

@@ -9,7 +9,8 @@
 
 layout(location = 1) rayPayloadEXT uint shadowPayload;
 
-#define MIN_LIGHT 1e-4  // a light adding less than this to a point is left out (no shadow ray)
+// a light adding less than this to a point is left out (no shadow ray)
+#define MIN_LIGHT 1e-4
 
 // [region ambient]
 vec3 ambientTerm(GpuMaterial m) {
@@ -28,7 +29,8 @@ float safeLength(vec3 v) {
 }
 vec3 safeNormalize(vec3 v) {
     float vv = dot(v, v);
-    return vv < 1e37 ? v * inversesqrt(vv) : normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z))));
+    return vv < 1e37 ? v * inversesqrt(vv)
+                     : normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z))));
 }
 
 // [region visible]
@@ -45,17 +47,19 @@ bool lightVisible(vec3 origin, vec3 light) {
     float distanceToLight = safeLength(toLight);
     toLight = safeNormalize(toLight);
     vec3 magnitude = max(abs(origin), abs(light));
-    float shortBy = 64.0 * kUnitRoundoff * max(magnitude.x, max(magnitude.y, magnitude.z));
+    float shortBy =
+        64.0 * kUnitRoundoff * max(magnitude.x, max(magnitude.y, magnitude.z));
     shadowPayload = 1u;  // assume blocked until the miss shader says otherwise
     traceRayEXT(tlas,
-                gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                0xFF,                          // every instance can cast a shadow
-                RAY_TYPE_SHADOW,               // SBT offset: the shadow hit groups
-                0,                             // SBT stride: one geometry per BLAS
-                MISS_SHADOW,                   // the shadow miss shader
-                origin, 0.0,                   // origin already offset from the surface
+                gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT |
+                    gl_RayFlagsSkipClosestHitShaderEXT,
+                0xFF,  // every instance can cast a shadow
+                RAY_TYPE_SHADOW,  // SBT offset: the shadow hit groups
+                0,  // SBT stride: one geometry per BLAS
+                MISS_SHADOW,  // the shadow miss shader
+                origin, 0.0,  // origin already offset from the surface
                 toLight, distanceToLight - shortBy,  // stop just short of the light
-                1);                            // payload location 1: shadowPayload
+                1);  // payload location 1: shadowPayload
     return shadowPayload == 0u;
 }
 // [end]
@@ -89,7 +93,8 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
         float ndotl = dot(n, l);
         if (ndotl <= 0.0) continue;  // the light is behind the surface: no ray needed
         ++rays;
-        if (lightVisible(origin, lights[i].position.xyz)) sum += lights[i].intensity.rgb * ndotl;
+        if (lightVisible(origin, lights[i].position.xyz))
+            sum += lights[i].intensity.rgb * ndotl;
     }
     return m.kd.rgb * sum;
 }
@@ -101,7 +106,8 @@ vec3 diffuseTerm(GpuMaterial m, vec3 p, float error, vec3 n, inout uint rays) {
 // k_d I_i max(0, l.n) + k_s I_i max(0, n.h)^shininess, h = (l + v) / |l + v|.
 // Chapter 12's meshes light with their interpolated normal `ns`; shadow
 // rays still leave along the surface's own normal n (ns = n before).
-vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, inout uint rays) {
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
+                         inout uint rays) {
     vec3 sum = vec3(0.0);
     vec3 origin = secondaryOrigin(p, error, n);
     for (uint i = 0u; i < camera.counts.z; ++i) {
@@ -121,12 +127,14 @@ vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, ve
 }
 // [end]
 
-vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
+vec3 diffuseSpecularTerm(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v,
+                         inout uint rays) {
     return diffuseSpecularTerm(m, p, error, n, n, v, rays);
 }
 
 // Chapter 07's whole local model: ambient + diffuse + specular.
-vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, inout uint rays) {
+vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
+                  inout uint rays) {
     return ambientTerm(m) + diffuseSpecularTerm(m, p, error, n, ns, v, rays);
 }
 vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint rays) {
@@ -139,12 +147,13 @@ vec3 localShading(GpuMaterial m, vec3 p, float error, vec3 n, vec3 v, inout uint
 // material: it takes the share the surface keeps (`local`). The highlight
 // is the light's reflection, blurred (thesis 3.3): a dielectric reflects
 // the Fresnel share F of it (`highlight`), however much it refracts.
-vec3 surfaceLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v, float local, float highlight,
-                  inout uint rays) {
+vec3 surfaceLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
+                  float local, float highlight, inout uint rays) {
     GpuMaterial weighted = m;
     weighted.kd.rgb *= local;
     weighted.ks.rgb *= highlight;
-    return local * ambientTerm(m) + diffuseSpecularTerm(weighted, p, error, n, ns, v, rays);
+    return local * ambientTerm(m) +
+           diffuseSpecularTerm(weighted, p, error, n, ns, v, rays);
 }
 // [end]
 #endif

@@ -24,7 +24,10 @@ float preciseAtan2(float y, float x) {
         offset = 0.25 * kPi;
     }
     float z = t * t;
-    float r = (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
+    float r = (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z -
+               3.33329491539e-1) *
+                  z * t +
+              t;
     r += offset;
     if (ay > ax) r = 0.5 * kPi - r;
     if (x < 0.0) r = kPi - r;
@@ -37,7 +40,8 @@ vec3 skyRadiance(vec3 d) {
                           : mix(camera.skyHorizon.rgb, camera.skyBottom.rgb, -d.y);
     }
     float u = 0.5 + preciseAtan2(d.x, -d.z) / (2.0 * kPi);
-    float v = preciseAtan2(length(d.xz), d.y) / kPi;  // = acos(y) for a unit d, exact near the poles too
+    // = acos(y) for a unit d, exact near the poles too
+    float v = preciseAtan2(length(d.xz), d.y) / kPi;
     float x = u * float(camera.counts.x) - 0.5, y = v * float(camera.counts.y) - 0.5;
     int x0 = int(floor(x)), y0 = int(floor(y));
     float fx = x - float(x0), fy = y - float(y0);

@@ -10,9 +10,11 @@
 
 // [region index]
 // n^2 = 1 + sum B_i L^2 / (L^2 - C_i), L in micrometres (host_device.h's glasses).
-float sellmeier(float nm, float B1, float B2, float B3, float B4, float C1, float C2, float C3, float C4) {
+float sellmeier(float nm, float B1, float B2, float B3, float B4, float C1, float C2,
+                float C3, float C4) {
     float l2 = nm * nm * 1e-6;
-    return sqrt(1.0 + B1 * l2 / (l2 - C1) + B2 * l2 / (l2 - C2) + B3 * l2 / (l2 - C3) + B4 * l2 / (l2 - C4));
+    return sqrt(1.0 + B1 * l2 / (l2 - C1) + B2 * l2 / (l2 - C2) + B3 * l2 / (l2 - C3) +
+                B4 * l2 / (l2 - C4));
 }
 
 // A material's index at `nm`: its glass, or glTF's Abbe-number line about
@@ -37,10 +39,11 @@ float lobe(float nm, float peak, float below, float above) {
 }
 
 vec3 cieXyz(float nm) {
-    return vec3(1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7)
-                    - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
-                0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
-                1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8));
+    return vec3(
+        1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) -
+            0.065 * lobe(nm, 501.1, 20.4, 26.2),
+        0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
+        1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8));
 }
 
 // What one wavelength, drawn uniformly from the visible range, is worth in

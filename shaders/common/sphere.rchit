@@ -22,8 +22,10 @@ void main() {
     // error grows with the centre's distance: a floor of radius 1e5).
     vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    vec3 magnitude = rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT);
-    if (gl_HitKindEXT == 1u) magnitude += abs(gl_ObjectRayOriginEXT - s.xyz) + s.w;  // the far root: from inside
+    vec3 magnitude =
+        rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT);
+    // the far root: from inside
+    if (gl_HitKindEXT == 1u) magnitude += abs(gl_ObjectRayOriginEXT - s.xyz) + s.w;
     payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.object = index;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;

@@ -49,7 +49,8 @@ vec2 accumulate(vec2 sum, vec2 p) {
 // difference o - centre as an exact sum of two floats, each square and r^2
 // as exact products, added without losing their low parts.
 float exactSquaredDistanceMinusRadius(vec3 o, vec3 centre, float r) {
-    vec2 x = twoSum(o.x, -centre.x), y = twoSum(o.y, -centre.y), z = twoSum(o.z, -centre.z);
+    vec2 x = twoSum(o.x, -centre.x), y = twoSum(o.y, -centre.y),
+         z = twoSum(o.z, -centre.z);
     vec2 c = twoProduct(-r, r);
     c = accumulate(c, twoProduct(x.x, x.x));
     c = accumulate(c, twoProduct(y.x, y.x));
@@ -101,7 +102,8 @@ bool intersectSphere(vec3 o, vec3 d, vec3 centre, float r, RG_OUT(vec2) t) {
     }
     if (discriminant < 0.0f) return false;
     float q = b + (b >= 0.0f ? 1.0f : -1.0f) * sqrt(discriminant);
-    if (q == 0.0f) {                              // tangent through the closest point: one double root
+    // tangent through the closest point: one double root
+    if (q == 0.0f) {
         t = vec2(0.0f);
         return c == 0.0f;
     }

@@ -14,12 +14,14 @@ layout(binding = RT_BINDING_TEXTURES, std430) readonly buffer Textures { vec4 te
 // then wrapped again below, for the neighbours bilinear filtering reads.
 float wrapCoordinate(float u, uint mode) {
     if (mode == TEXTURE_WRAP_CLAMP) return clamp(u, 0.0, 1.0);
-    if (mode == TEXTURE_WRAP_MIRROR) return 1.0 - abs(mod(u, 2.0) - 1.0);  // 0..1..0 with period 2
+    // 0..1..0 with period 2
+    if (mode == TEXTURE_WRAP_MIRROR) return 1.0 - abs(mod(u, 2.0) - 1.0);
     return fract(u);
 }
 int wrapTexel(int i, int n, uint mode) {
     if (mode == TEXTURE_WRAP_REPEAT) return (i % n + n) % n;
-    return clamp(i, 0, n - 1);  // clamped, or mirrored: the edge texel repeats at the turn
+    // clamped, or mirrored: the edge texel repeats at the turn
+    return clamp(i, 0, n - 1);
 }
 // [end]
 
@@ -39,7 +41,8 @@ vec3 sampleTexture(uvec4 t, vec2 uv) {
     y -= 0.5;  // between the four nearest texel centres
     int x0 = int(floor(x)), y0 = int(floor(y));
     float fx = x - float(x0), fy = y - float(y0);
-    return mix(mix(texel(t, x0, y0), texel(t, x0 + 1, y0), fx), mix(texel(t, x0, y0 + 1), texel(t, x0 + 1, y0 + 1), fx), fy);
+    return mix(mix(texel(t, x0, y0), texel(t, x0 + 1, y0), fx),
+               mix(texel(t, x0, y0 + 1), texel(t, x0 + 1, y0 + 1), fx), fy);
 }
 // [end]
 #endif

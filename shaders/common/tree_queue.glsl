@@ -9,7 +9,8 @@
 
 // [region queue]
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer TreeQueue {
-    uint count;     // trees queued: the second launch's width (VkTraceRaysIndirectCommandKHR)
+    // trees queued: the second launch's width (VkTraceRaysIndirectCommandKHR)
+    uint count;
     uint height;    // 1
     uint depth;     // 1
     uint capacity;
@@ -22,11 +23,13 @@ bool queueTree(uvec2 pixel) {
     TreeQueue queue = TreeQueue(push.treeQueue);
     uint slot = atomicAdd(queue.count, 1u);
     if (slot >= queue.capacity) {
-        atomicAdd(queue.count, 0xFFFFFFFFu);  // give the slot back: the count ends at the capacity
+        // give the slot back: the count ends at the capacity
+        atomicAdd(queue.count, 0xFFFFFFFFu);
         return false;
     }
     queue.trees[slot] = QueuedTree(Branch[2](tree.stack[0], tree.stack[1]), tree.radiance,
-                                   pixel.y * uint(imageSize(target).x) + pixel.x, uint(tree.top), tree.rays, 0u, 0u);
+                                   pixel.y * uint(imageSize(target).x) + pixel.x,
+                                   uint(tree.top), tree.rays, 0u, 0u);
     return true;
 }
 
