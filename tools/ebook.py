@@ -84,7 +84,11 @@ def main():
         partial = book.with_name(book.name + ".partial")
         shutil.copyfile(joined, partial)
         os.replace(partial, book)
-    print(f"ebook: {book.resolve()} ({len(pages)} pages of the site)")
+        # A copy inside the site, for the index's link to it.
+        inside = site / "rayglass.pdf.partial"
+        shutil.copyfile(joined, inside)
+        os.replace(inside, site / "rayglass.pdf")
+    print(f"ebook: {book.resolve()} ({len(pages)} pages of the site; a copy in {site})")
     return 0
 
 
