@@ -149,6 +149,14 @@ def check_search(d, site, failures):
         WebDriverWait(d, 10).until(lambda d: d.find_elements(By.CSS_SELECTOR, ".md-search-result__item"))
     except Exception:
         failures.append("search from disk: no results for 'Schlick'")
+    # A code page's hit shows code, not its line-number gutter (hooks.py).
+    texts = d.execute_script("return [...document.querySelectorAll('.md-search-result__item')]"
+                             ".map(e => e.textContent)")
+    if any("1 2 3 4 5" in t for t in texts):
+        failures.append("search: a hit's excerpt is a code page's line numbers")
+    if not any("code/" in (h or "") for h in d.execute_script(
+            "return [...document.querySelectorAll('.md-search-result__link')].map(a => a.getAttribute('href'))")):
+        failures.append("search: no code page among the hits for 'Schlick'")
     for entry in d.get_log("browser"):
         failures.append(f"search: console: {entry['level']} {entry['message']}")
 

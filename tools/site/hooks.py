@@ -98,6 +98,22 @@ def on_page_markdown(markdown, page, config, files):
                     if (ROOT / m.group(1)).exists() else m.group(0), markdown)
 
 
+GUTTER = re.compile(r"(?<!\S)1(?: \d+)+")
+
+
+def _without_gutters(index_json):
+    """A code page's search text starts with its line-number gutter ("1 2 3
+    ... N"), which would be every hit's excerpt: drop such runs."""
+    def counts_up(m):
+        numbers = m.group(0).split()
+        return len(numbers) > 2 and numbers == [str(i) for i in range(1, len(numbers) + 1)]
+    index = json.loads(index_json)
+    for doc in index["docs"]:
+        if doc["location"].startswith("code/"):
+            doc["text"] = GUTTER.sub(lambda m: "" if counts_up(m) else m.group(0), doc["text"])
+    return json.dumps(index)
+
+
 def on_post_build(config):
     site = pathlib.Path(config["site_dir"])
     if not (KATEX / "katex.min.js").exists():
@@ -107,7 +123,8 @@ def on_post_build(config):
     for name in ("katex.min.js", "katex.min.css"):
         shutil.copy(KATEX / name, dest / name)
     shutil.copytree(KATEX / "fonts", dest / "fonts", dirs_exist_ok=True)
-    index = (site / "search" / "search_index.json").read_text()
+    index = _without_gutters((site / "search" / "search_index.json").read_text())
+    (site / "search" / "search_index.json").write_text(index)
     (site / "search" / "search_index.js").write_text(f"var __index = {index};\n")  # the name Material 9 reads
     workers = sorted((site / "assets" / "javascripts" / "workers").glob("search.*.min.js"))
     if len(workers) != 1:
