@@ -93,9 +93,8 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         pendingShot_ = false;
         screenshot(frame);
     }
-    handleKeys(frame);
+    handleInput(frame);
     if (reload_) applyReload();  // F5 or a saved shader
-    handleMouse();
     handleFlying(seconds);
     if (overlayVisible_) {
         if (secondsSince(lastRays_) > 1) measureRays();
@@ -152,74 +151,80 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
 }
 // [end]
 
-void Viewer::handleKeys(uint32_t frame) {
+// Keys and the pointer in the order they came: after a slow frame (a second
+// on lavapipe) a whole drag and the R after it are in one poll, and the R
+// must come last.
+void Viewer::handleInput(uint32_t frame) {
     bool typing = overlayVisible_ && overlay_->wantsKeyboard();  // into an overlay field
-    tapped_.clear();
-    for (auto [key, mods] : app_.window->takeKeys()) {
-        // pressed since the last frame, maybe let go again (handleFlying)
-        tapped_.push_back(key);
-        if (key == GLFW_KEY_ESCAPE || (key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL)))
-            glfwSetWindowShouldClose(app_.window->handle(), GLFW_TRUE);
-        if (typing) continue;
-        if (key == GLFW_KEY_R) {
-            camera_.reset();
-            cameraDirty_ = true;
-        } else if (key == GLFW_KEY_C) {  // a block to paste into the scene file
-            std::printf("\"camera\": %s\n",
-                        cameraToJson(camera_.camera(), scene_.origin).dump().c_str());
-            std::fflush(stdout);
-        } else if (key == GLFW_KEY_H) {
-            overlayVisible_ = !overlayVisible_;
-        } else if (key == GLFW_KEY_F2) {
-            // a preview is on screen: the next full frame
-            if (scale_ > 1) pendingShot_ = true;
-            else screenshot(frame);
-        } else if (key == GLFW_KEY_F5 && reload_) {
-            reload_->request();
-        }
-    }
-}
-
-void Viewer::handleMouse() {
     bool overlayHasMouse = overlayVisible_ && overlay_->wantsMouse();
     double scroll = app_.window->takeScroll();
     if (scroll != 0 && !overlayHasMouse) {
         camera_.zoom(scroll);
         cameraDirty_ = true;
     }
-    // Presses, moves and releases as events, in order: after a slow frame
-    // (a second on lavapipe) a whole click or drag is in one poll.
-    // A press on the overlay is the overlay's. ImGui's own answer is the
-    // last frame's: a pointer that has just come onto the overlay and
-    // clicked is not yet its. So the overlay's box too.
-    auto onOverlay = [&](double x, double y) {
-        const double* b = overlayBox_;
-        return overlayHasMouse || (overlayVisible_ && x >= b[0] && y >= b[1] &&
-                                   x < b[0] + b[2] && y < b[1] + b[3]);
-    };
+    tapped_.clear();
+    std::vector<Window::KeyPress> keys = app_.window->takeKeys();
+    std::vector<Window::PointerEvent> pointer = app_.window->takePointer();
+    size_t k = 0, p = 0;
+    while (k < keys.size() || p < pointer.size()) {
+        if (p == pointer.size() || (k < keys.size() && keys[k].order < pointer[p].order))
+            handleKey(keys[k++], frame, typing);
+        else handlePointer(pointer[p++], overlayHasMouse);
+    }
+}
+
+void Viewer::handleKey(const Window::KeyPress& k, uint32_t frame, bool typing) {
+    // pressed since the last frame, maybe let go again (handleFlying)
+    tapped_.push_back(k.key);
+    if (k.key == GLFW_KEY_ESCAPE || (k.key == GLFW_KEY_Q && (k.mods & GLFW_MOD_CONTROL)))
+        glfwSetWindowShouldClose(app_.window->handle(), GLFW_TRUE);
+    if (typing) return;
+    if (k.key == GLFW_KEY_R) {
+        camera_.reset();
+        cameraDirty_ = true;
+    } else if (k.key == GLFW_KEY_C) {  // a block to paste into the scene file
+        std::printf("\"camera\": %s\n",
+                    cameraToJson(camera_.camera(), scene_.origin).dump().c_str());
+        std::fflush(stdout);
+    } else if (k.key == GLFW_KEY_H) {
+        overlayVisible_ = !overlayVisible_;
+    } else if (k.key == GLFW_KEY_F2) {
+        // a preview is on screen: the next full frame
+        if (scale_ > 1) pendingShot_ = true;
+        else screenshot(frame);
+    } else if (k.key == GLFW_KEY_F5 && reload_) {
+        reload_->request();
+    }
+}
+
+// Presses, moves and releases as events, in order: after a slow frame a
+// whole click or drag is in one poll. A press on the overlay is the
+// overlay's. ImGui's own answer is the last frame's: a pointer that has just
+// come onto the overlay and clicked is not yet its. So the overlay's box too.
+void Viewer::handlePointer(const Window::PointerEvent& e, bool overlayHasMouse) {
+    const double* b = overlayBox_;
+    bool onOverlay = overlayHasMouse || (overlayVisible_ && e.x >= b[0] && e.y >= b[1] &&
+                                         e.x < b[0] + b[2] && e.y < b[1] + b[3]);
     using Event = Window::PointerEvent;
-    for (const Event& e : app_.window->takePointer()) {
-        if (e.kind == Event::Press && dragButton_ < 0 && !onOverlay(e.x, e.y)) {
-            dragButton_ = e.button;
-            pressX_ = lastX_ = e.x;
-            pressY_ = lastY_ = e.y;
-            dragMoved_ = false;
-        } else if (e.kind == Event::Move && dragButton_ >= 0) {
-            dragMoved_ =
-                dragMoved_ || std::abs(e.x - pressX_) + std::abs(e.y - pressY_) > 3;
-            if (dragMoved_) {
-                if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT)
-                    camera_.orbit(e.x - lastX_, e.y - lastY_);
-                else camera_.pan(e.x - lastX_, e.y - lastY_, app_.window->extent.height);
-                cameraDirty_ = true;
-            }
-            lastX_ = e.x;
-            lastY_ = e.y;
-        } else if (e.kind == Event::Release && e.button == dragButton_) {
-            // a click, not a drag
-            if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);
-            dragButton_ = -1;
+    if (e.kind == Event::Press && dragButton_ < 0 && !onOverlay) {
+        dragButton_ = e.button;
+        pressX_ = lastX_ = e.x;
+        pressY_ = lastY_ = e.y;
+        dragMoved_ = false;
+    } else if (e.kind == Event::Move && dragButton_ >= 0) {
+        dragMoved_ = dragMoved_ || std::abs(e.x - pressX_) + std::abs(e.y - pressY_) > 3;
+        if (dragMoved_) {
+            if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT)
+                camera_.orbit(e.x - lastX_, e.y - lastY_);
+            else camera_.pan(e.x - lastX_, e.y - lastY_, app_.window->extent.height);
+            cameraDirty_ = true;
         }
+        lastX_ = e.x;
+        lastY_ = e.y;
+    } else if (e.kind == Event::Release && e.button == dragButton_) {
+        // a click, not a drag
+        if (dragButton_ == GLFW_MOUSE_BUTTON_LEFT && !dragMoved_) pick(e.x, e.y);
+        dragButton_ = -1;
     }
 }
 

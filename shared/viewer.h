@@ -58,8 +58,9 @@ public:
     void reloadShaders(const RtShaders& shaders, Rebuild rebuild);
 
 private:
-    void handleKeys(uint32_t frame);
-    void handleMouse();
+    void handleInput(uint32_t frame);
+    void handleKey(const Window::KeyPress& k, uint32_t frame, bool typing);
+    void handlePointer(const Window::PointerEvent& e, bool overlayHasMouse);
     void handleFlying(double seconds);
     void drawOverlay(uint32_t frame);
     void parameterControls(const std::string& section);

@@ -43,9 +43,8 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
         static_cast<Window*>(glfwGetWindowUserPointer(w))->resized_ = true;
     });
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
-        if (action == GLFW_PRESS)
-            static_cast<Window*>(glfwGetWindowUserPointer(w))
-                ->keys_.push_back({key, mods});
+        Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        if (action == GLFW_PRESS) self->keys_.push_back({key, mods, self->events_++});
     });
     // Where the pointer was when a button went down: the last motion event
     // before it. glfwGetCursorPos asks the X server for the pointer now,
@@ -54,7 +53,7 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
         self->cursor_[0] = x, self->cursor_[1] = y, self->cursorKnown_ = true;
         if (self->buttonsHeld_ > 0)
-            self->pointer_.push_back({PointerEvent::Move, -1, x, y});
+            self->pointer_.push_back({PointerEvent::Move, -1, x, y, self->events_++});
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
         Window* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
@@ -63,7 +62,8 @@ Window::Window(int width, int height, const std::string& title) : title_(title) 
         bool press = action == GLFW_PRESS;
         self->buttonsHeld_ = std::max(0, self->buttonsHeld_ + (press ? 1 : -1));
         self->pointer_.push_back(
-            {press ? PointerEvent::Press : PointerEvent::Release, button, x, y});
+            {press ? PointerEvent::Press : PointerEvent::Release, button, x, y,
+             self->events_++});
     });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->scroll_ += y;

@@ -6,6 +6,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,9 +38,13 @@ public:
     const std::string& initialTitle() const { return title_; }
     // The keys pressed since the last call, oldest first, with the modifiers
     // held at the time (Ctrl+Q must not be read after Ctrl was let go).
+    // Both kinds of event carry their place in one sequence (`order`): a
+    // drag and the key after it can arrive in one poll, and must be taken
+    // in that order.
     struct KeyPress {
         int key;   // GLFW_KEY_*
         int mods;  // GLFW_MOD_*
+        uint64_t order;
     };
     std::vector<KeyPress> takeKeys() { return std::exchange(keys_, {}); }
     // Mouse button presses and releases since the last call, and the moves
@@ -49,6 +54,7 @@ public:
         enum Kind { Press, Release, Move } kind;
         int button;   // GLFW_MOUSE_BUTTON_* (Press, Release)
         double x, y;  // window coordinates
+        uint64_t order;
     };
     std::vector<PointerEvent> takePointer() { return std::exchange(pointer_, {}); }
     // Scroll wheel steps since the last call (up: positive).
@@ -71,6 +77,7 @@ private:
     double cursor_[2] = {0, 0};  // from the last motion event
     bool cursorKnown_ = false;
     int buttonsHeld_ = 0;  // moves are queued only while a button is down
+    uint64_t events_ = 0;  // events so far: the next one's order
     double scroll_ = 0;
     std::string title_;
 };

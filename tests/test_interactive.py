@@ -8,7 +8,8 @@ xdotool. Standard library only.
     test_interactive.py EXE OUT_DIR SCENE_JSON [--full] [--reload] [--preview] [--antialias] [--size WxH]
 
 Every chapter: a drag changes the picture, R brings the first one back (also
-after a whole drag that reaches the viewer within one frame), Esc
+after a whole drag that reaches the viewer within one frame, and when the
+drag and the R reach it in one frame), Esc
 ends the process with exit 0 and no validation message. --full (chapter
 10: it has a depth parameter) adds: a right drag pans; F2's report has the
 moved camera; the overlay is in the window but not in the F2 PNG, which
@@ -299,6 +300,13 @@ try:
     check(changed(quick), f"a drag within one frame orbits (mean difference {diff(first, quick):.1f})")
     key(box, "r")
     shot_when(restored, "R after the quick drag")
+    # A drag and then R, within one frame: taken in that order, R wins.
+    xdotool("mousedown", 1, *[a for i in range(1, 6) for a in ("mousemove", cx + 12 * i, cy + 4 * i)],
+            "mouseup", 1, "key", "r")
+    time.sleep(1)
+    last = shot_when(restored, "a drag and R within one frame end at the first picture")
+    check(restored(last), f"a drag and R within one frame end at the first picture "
+          f"(mean difference {diff(first, last):.2f})")
 
     xdotool("mousemove", box[0] + W * 3 // 4, box[1] + H * 3 // 4)
     xdotool("click", "--repeat", 3, "--delay", 100, 4)  # wheel up: zoom in
