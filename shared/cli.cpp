@@ -44,6 +44,15 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
             CLI::ignore_case))
         // --help names the words, not the map behind them
         ->option_text("grouped|instances");
+    app.add_option("--numerics", opts.numerics,
+                   "The shaders' care for huge and tiny sizes: auto (where the scene "
+                   "needs it), careful (always) or fast (never)")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, Numerics>{{"auto", Numerics::Auto},
+                                            {"careful", Numerics::Careful},
+                                            {"fast", Numerics::Fast}},
+            CLI::ignore_case))
+        ->option_text("auto|careful|fast");
 }
 
 namespace {

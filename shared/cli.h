@@ -14,6 +14,9 @@ class App;
 
 namespace rg {
 
+// --numerics: the shaders' branches for huge and tiny scenes (rt_scene.h)
+enum class Numerics { Auto, Careful, Fast };
+
 struct Options {
     std::string chapter;          // "04_raygen_miss": names the defaults below
     bool headless = false;        // no window: render offscreen, write PNG and report
@@ -32,6 +35,8 @@ struct Options {
     // --layout grouped (default, 04 on): static spheres in one BLAS; instances: one each
     bool groupSpheres = true;
     // From chapter 04 on:
+    // auto: careful where the scene needs it (rt_scene.h's needsCarefulNumerics)
+    Numerics numerics = Numerics::Auto;
     // the window's overlay (viewer.h); --no-ui starts without it
     bool ui = true;
     // the tree whose shaders a window reloads (default: the one built from)

@@ -97,6 +97,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // and the running mean (rt_bindings.glsl's kAverages): a window may
         // switch them on at any time, headless runs only from the start.
         shaders.raygenAverages = app.window || antialias == kOn || settings.accumulate;
+        // Branches for huge and tiny numbers only for a scene that has them
+        // (chapter 06's page).
+        CarefulNumerics careful = carefulNumerics(opts, scene);
+        specialize(shaders, careful);
         RtPipeline pipeline = createRtPipeline(
             app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush), shaders);
         // Chapter 10: two launches, where the driver can size a launch from a
@@ -177,7 +181,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                     .antialias = last.antialias != 0};
         // the last frame's launches
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},
-                                {"parameters", params.values()}};
+                                {"parameters", params.values()},
+                                {"numerics", toJson(careful)}};
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},
                                              {"pixels", rt.width * rt.height},

@@ -16,6 +16,20 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
     p.layout =
         createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
+    // Specialization: the driver compiles each stage with constants 0-3
+    // fixed, so branches on them cost nothing (and no registers). One list
+    // for every stage: an entry a shader does not declare is ignored.
+    uint32_t constants[4] = {shaders.raygenConstant, shaders.raygenAverages,
+                             shaders.carefulSizes, shaders.carefulShininess};
+    VkSpecializationMapEntry entries[4];
+    for (uint32_t id = 0; id < 4; ++id)
+        entries[id] = {.constantID = id,
+                       .offset = id * uint32_t(sizeof(uint32_t)),
+                       .size = sizeof(uint32_t)};
+    VkSpecializationInfo specialization{.mapEntryCount = 4,
+                                        .pMapEntries = entries,
+                                        .dataSize = sizeof constants,
+                                        .pData = constants};
     // Every stage of the pipeline, and the groups that point into that list:
     // group 0 raygen, then the miss groups, then the hit groups (the SBT's order).
     std::vector<VkPipelineShaderStageCreateInfo> stages;
@@ -24,7 +38,8 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
         stages.push_back({.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                           .stage = stage,
                           .module = loadShader(gpu, deletion, path, shaders.spirvDir),
-                          .pName = "main"});
+                          .pName = "main",
+                          .pSpecializationInfo = &specialization});
         return uint32_t(stages.size() - 1);
     };
     auto general = [&](uint32_t stage) {
@@ -36,18 +51,7 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
              .anyHitShader = VK_SHADER_UNUSED_KHR,
              .intersectionShader = VK_SHADER_UNUSED_KHR});
     };
-    // Specialization: the driver compiles the ray generation shader with
-    // constants 0 and 1 fixed, so branches on them cost nothing (and no registers).
-    uint32_t constants[2] = {shaders.raygenConstant, shaders.raygenAverages};
-    VkSpecializationMapEntry entries[2] = {
-        {.constantID = 0, .offset = 0, .size = sizeof(uint32_t)},
-        {.constantID = 1, .offset = sizeof(uint32_t), .size = sizeof(uint32_t)}};
-    VkSpecializationInfo specialization{.mapEntryCount = 2,
-                                        .pMapEntries = entries,
-                                        .dataSize = sizeof constants,
-                                        .pData = constants};
     general(addStage(VK_SHADER_STAGE_RAYGEN_BIT_KHR, shaders.raygen));
-    stages.back().pSpecializationInfo = &specialization;
     for (const auto& miss : shaders.miss)
         general(addStage(VK_SHADER_STAGE_MISS_BIT_KHR, miss));
     for (const auto& hit : shaders.hitGroups) {

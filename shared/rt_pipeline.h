@@ -23,6 +23,11 @@ struct RtShaders {
     // Constant 1, kAverages (rt_bindings.glsl): 0 for a run that never
     // averages frames, whose shader then holds no jitter and no running mean.
     uint32_t raygenAverages = 1;
+    // Constants 2 and 3, kCarefulSizes and kCarefulShininess
+    // (rt_bindings.glsl), every stage: 0 for a scene that needs no care for
+    // huge or tiny sizes, or for huge exponents (rt_scene.h's carefulNumerics).
+    uint32_t carefulSizes = 1;
+    uint32_t carefulShininess = 1;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder

@@ -15,6 +15,68 @@
 
 namespace rg {
 
+// [region needs_careful_rule]
+CarefulNumerics needsCarefulNumerics(const Scene& scene) {
+    // Near its surface a sphere's quadratic rounds by about 2^-24 of its
+    // radius R (sphere_intersect.glsl's c); seen from d > R / 1024 that
+    // is under 1e-4 of d, far below a pixel. Squares of lengths within
+    // 1e-8..1e8 neither overflow nor underflow, with margin.
+    const double kRatio = 1024.0, kSmallest = 1e-8, kLargest = 1e8;
+    CarefulNumerics careful{.sizes = false, .shininess = false};
+    for (const Material& m : scene.materials)
+        careful.shininess = careful.shininess || m.shininess >= 1e4;
+    double extent = 0;         // the farthest point from the eye (the origin)
+    double smallest = kLargest;  // the smallest sphere's shortest semi-axis
+    for (const PointLight& light : scene.lights)
+        extent = std::max(extent, glm::length(light.position));
+    for (const Object& o : scene.objects) {
+        const glm::dmat4& m = o.transform;
+        double centre = glm::length(glm::dvec3(m[3])), stretch = largestStretch(m);
+        if (o.type == ShapeType::Sphere) {
+            double shortest = std::min({glm::length(glm::dvec3(m[0])),
+                                        glm::length(glm::dvec3(m[1])),
+                                        glm::length(glm::dvec3(m[2]))});
+            // the eye's distance from the surface, at least (0: it may be on it)
+            double nearest = centre > stretch     ? centre - stretch
+                             : centre < shortest ? shortest - centre
+                                                 : 0.0;
+            careful.sizes = careful.sizes || stretch > kRatio * nearest;
+            smallest = std::min(smallest, shortest);
+            extent = std::max(extent, centre + stretch);
+        } else {
+            // the unit quad's corners lie sqrt(2) from its centre
+            double reach = std::sqrt(2.0);
+            if (o.type == ShapeType::Mesh) {
+                const Mesh& mesh = *scene.meshes[o.mesh];
+                reach = glm::length(glm::max(glm::abs(glm::dvec3(mesh.lo)),
+                                             glm::abs(glm::dvec3(mesh.hi))));
+            }
+            extent = std::max(extent, centre + stretch * reach);
+        }
+    }
+    // A sphere's object space divides by its size: lengths grow by extent / smallest.
+    careful.sizes = careful.sizes || extent > kLargest || smallest < kSmallest ||
+                    extent > kLargest * smallest;
+    return careful;
+}
+// [end]
+
+CarefulNumerics carefulNumerics(const Options& opts, const Scene& scene) {
+    if (opts.numerics == Numerics::Auto) return needsCarefulNumerics(scene);
+    bool on = opts.numerics == Numerics::Careful;
+    return {.sizes = on, .shininess = on};
+}
+
+void specialize(RtShaders& shaders, const CarefulNumerics& careful) {
+    shaders.carefulSizes = careful.sizes;
+    shaders.carefulShininess = careful.shininess;
+}
+
+nlohmann::json toJson(const CarefulNumerics& careful) {
+    auto word = [](bool on) { return on ? "careful" : "fast"; };
+    return {{"sizes", word(careful.sizes)}, {"shininess", word(careful.shininess)}};
+}
+
 SkyTexels loadSky(const Scene& scene) {
     SkyTexels sky;
     if (scene.sky.image.empty()) return sky;

@@ -3,9 +3,11 @@
 // descriptor set (bindings in host_device.h).
 #pragma once
 #include "accel.h"
+#include "cli.h"
 #include "descriptors.h"
 #include "host_device.h"
 #include "resources.h"
+#include "rt_pipeline.h"
 #include "scene.h"
 
 #include <vector>
@@ -56,6 +58,24 @@ struct SceneLayout {
     // > 0: icospheres of that level, one instance each (never grouped)
     int sphereMeshLevel = 0;
 };
+
+// [region needs_careful]
+// Which of the shaders' branches for extreme numbers (rt_bindings.glsl)
+// this scene needs, in the camera space of toCameraSpace:
+// - sizes: a sphere seen from closer than 1/1024 of its radius (a floor
+//   sphere), or a length outside 1e-8..1e8 (a sky dome of radius 1e20);
+// - shininess: an exponent of 1e4 or more (a smooth glTF glass).
+struct CarefulNumerics {
+    bool sizes = true;
+    bool shininess = true;
+};
+CarefulNumerics needsCarefulNumerics(const Scene& scene);
+// [end]
+// For a run: --numerics careful or fast, else (auto) the rule above.
+CarefulNumerics carefulNumerics(const Options& opts, const Scene& scene);
+// Sets RtShaders's constants 2 and 3, and says which for the report.
+void specialize(RtShaders& shaders, const CarefulNumerics& careful);
+nlohmann::json toJson(const CarefulNumerics& careful);
 
 // Uploads everything and writes the descriptor set for `target`.
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,

@@ -63,6 +63,7 @@ Viewer::Viewer(App& app, Options& opts, Scene& scene, RtScene& rt, Image& target
       params_(std::move(params)),
       camera_(scene.camera) {
     if (!app.window) return;
+    fastSizes_ = !carefulNumerics(opts, scene).sizes;
     overlay_ = std::make_unique<Overlay>(app.gpu, *app.window);
     overlayVisible_ = opts.ui;
     loop.overlay = [this](VkCommandBuffer cmd, uint32_t image) {
@@ -396,6 +397,9 @@ void Viewer::viewControls() {
         std::string label = "light " + std::to_string(i + 1);
         if (ImGui::DragFloat3(label.c_str(), &at.x, speed, 0, 0, "%.2f")) {
             light.position = glm::dvec3(at) + scene_.origin;
+            // Typed past 1e7 from the eye, with shaders built without the
+            // care for such lengths (needsCarefulNumerics's 1e8): held there.
+            if (fastSizes_) light.position = glm::clamp(light.position, -1e7, 1e7);
             lightsDirty_ = true;
         }
         float v[3] = {float(light.intensity.r), float(light.intensity.g),

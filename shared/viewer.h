@@ -76,6 +76,9 @@ private:
     App& app_;
     Options& opts_;
     Scene& scene_;
+    // the shaders were built without the care for huge sizes (rt_scene.h):
+    // a light edit keeps within the lengths that need none
+    bool fastSizes_ = false;
     RtScene& rt_;
     Image& target_;
     FrameLoop& loop_;

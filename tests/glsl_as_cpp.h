@@ -6,6 +6,8 @@
 namespace shader {
 #define RG_OUT(T) T&  // GLSL's `out` parameters
 #define RG_PRECISE    // C++ already evaluates as written (no -ffast-math)
+// rt_bindings.glsl's specialization constant; a test may switch it off
+inline bool kCarefulSizes = true;
 #include "fresnel.glsl"
 #include "sphere_intersect.glsl"
 #undef RG_OUT

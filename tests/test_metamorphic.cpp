@@ -9,7 +9,8 @@
 //   - a thin and a thick flat glass plate show the same view (parallel
 //     faces only shift the rays sideways, here by far less than a pixel);
 //   - a light inside a closed opaque object lights nothing outside it;
-//   - a scene and the same scene scaled by 1e-3 or 1e3 look the same.
+//   - a scene and the same scene scaled by 1e-3 or 1e3 look the same;
+//   - and without the care the rule compiles in, the hard cases fail.
 // Each holds when at most 0.1 % of the pixels differ by more than 1/255.
 #include "harness.h"
 
@@ -37,12 +38,15 @@ json sphere(double x, double y, double z, double r, const std::string& material)
     return {{"type", "sphere"}, {"center", {x, y, z}}, {"radius", r}, {"material", material}};
 }
 
-rgtest::Png render(const std::string& exe, const json& scene, const std::string& name) {
+rgtest::Png render(const std::string& exe, const json& scene, const std::string& name,
+                   const std::vector<std::string>& extraArgs = {}) {
     std::string dir = rgtest::outputDir("meta_" + name);
     std::ofstream(dir + "/scene.json") << scene.dump(1);
-    rgtest::RunResult r = rgtest::run(exe, {"--headless", "--validation", "--frames", "1", "--width",
-                                            std::to_string(kWidth), "--height", std::to_string(kHeight),
-                                            "--scene", dir + "/scene.json", "--output", dir + "/out.png"});
+    std::vector<std::string> args = {"--headless", "--validation", "--frames", "1", "--width",
+                                     std::to_string(kWidth), "--height", std::to_string(kHeight),
+                                     "--scene", dir + "/scene.json", "--output", dir + "/out.png"};
+    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    rgtest::RunResult r = rgtest::run(exe, args);
     EXPECT_EQ(r.exitCode, 0) << name << ": " << r.output;
     return rgtest::readPng(dir + "/out.png");
 }
@@ -142,6 +146,46 @@ TEST(Metamorphic, AHugeSphereLooksLikeAPlane) {
         ball["objects"][0] = sphere(0, -radius, 0, radius, "floor");
         expectSame(plane, ball, "ground_" + std::to_string(int(std::log10(radius))),
                    {{"06", RG_EXE_06}, {"07", RG_EXE_07}});
+    }
+}
+
+// The other side of the rule (rt_scene.h's needsCarefulNumerics): where it
+// compiles in the shaders' care for extreme numbers, that care is what makes
+// the pictures right. Forced off (--numerics fast) the floor sphere no
+// longer looks like the plane, and the sky dome of radius 1e20 and the
+// shininess of 1e6 leave their reference (which here computes in double,
+// not by the rule under test).
+TEST(Metamorphic, WithoutTheCareTheHardCasesFail) {
+    json plane = baseScene();
+    plane["camera"] = {{"position", {0, 3.5, 4.5}}, {"look_at", {0, 0.3, 0}}, {"up", {0, 1, 0}}, {"fov_y_deg", 45}};
+    plane["objects"][0]["u"] = {40, 0, 0};
+    plane["objects"][0]["v"] = {0, 0, -40};
+    json ball = plane;
+    ball["objects"][0] = sphere(0, -1e5, 0, 1e5, "floor");
+    double share = differing(render(RG_EXE_06, plane, "fast_plane"),
+                             render(RG_EXE_06, ball, "fast_ground_5", {"--numerics", "fast"}));
+    EXPECT_GT(share, 0.01) << 100 * share << " % of pixels differ";
+    struct Case {
+        std::string exe, scene, careful;
+    };
+    for (const Case& c : {Case{RG_EXE_06, "ground_sphere_1e5", "sizes"}, Case{RG_EXE_06, "sky_dome_1e20", "sizes"},
+                          Case{RG_EXE_07, "shininess_1e6", "shininess"}}) {
+        std::string dir = rgtest::outputDir("meta_fast_" + c.scene);
+        for (std::string numerics : {"auto", "fast"}) {
+            rgtest::RunResult r =
+                rgtest::run(c.exe, {"--headless", "--validation", "--reference", "--frames", "1", "--width", "160",
+                                    "--height", "90", "--scene", RG_SOURCE_DIR "/tests/scenes/" + c.scene + ".json",
+                                    "--numerics", numerics, "--output", dir + "/" + numerics + ".png"});
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+            json report = rgtest::readJson(dir + "/" + numerics + ".json");
+            double off = report["error"].value("frac_over_1_255", 0.0);
+            if (numerics == "auto") {  // the rule chose the care; the match itself is HardCases's
+                EXPECT_EQ(report["numerics"].value(c.careful, ""), "careful") << c.scene;
+            } else {
+                EXPECT_EQ(report["numerics"].value(c.careful, ""), "fast") << c.scene;
+                EXPECT_GT(off, 0.003) << c.scene << ": " << 100 * off << " % of pixels off";
+            }
+        }
     }
 }
 

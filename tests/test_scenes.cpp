@@ -2,6 +2,7 @@
 // for every chapter that reads scenes.
 #include "harness.h"
 
+#include "rt_scene.h"
 #include "scene.h"
 
 #include <fstream>
@@ -124,6 +125,55 @@ TEST(SceneRules, CameraSpaceMovesEverythingByTheEye) {
         EXPECT_NEAR(glm::length(moved.objects[i].center - nearMoved.objects[i].center), 0.0, 1e-9) << i;
     EXPECT_NEAR(glm::length(moved.lights[0].position - nearMoved.lights[0].position), 0.0, 1e-9);
     EXPECT_NEAR(glm::length(moved.camera.lookAt - nearMoved.camera.lookAt), 0.0, 1e-9);
+}
+
+// The rule that compiles in the shaders' care for extreme numbers
+// (rt_scene.h's needsCarefulNumerics), on scenes whose need is known from
+// their geometry: a floor sphere's radius against the eye's height above
+// it, lengths beyond 1e8 or below 1e-8, a shininess from 1e4 on.
+rg::CarefulNumerics ruleFor(const std::string& name, const std::string& objects,
+                            const std::string& material = "{}") {
+    std::string dir = rgtest::outputDir("scenes_numerics_" + name);
+    std::ofstream(dir + "/s.json") << R"({"camera": {"position": [3, 1, 5], "look_at": [3, 0, 0]},
+        "lights": [{"position": [0, 5, 0]}], "materials": {"m": )" + material +
+                                          R"(}, "objects": [)" + objects + "]}";
+    return rg::needsCarefulNumerics(rg::toCameraSpace(rg::loadScene(dir + "/s.json")));
+}
+
+std::string floorSphere(double radius) {
+    return R"({"type": "sphere", "center": [0, )" + std::to_string(-radius) +
+           R"(, 0], "radius": )" + std::to_string(radius) + R"(, "material": "m"})";
+}
+
+TEST(SceneRules, CarefulNumericsWhereTheGeometryNeedsThem) {
+    // the eye is 1 above the top of each floor sphere: careful past 1024
+    EXPECT_FALSE(ruleFor("floor_500", floorSphere(500)).sizes);
+    EXPECT_TRUE(ruleFor("floor_2000", floorSphere(2000)).sizes);
+    EXPECT_TRUE(ruleFor("floor_1e5", floorSphere(1e5)).sizes);
+    // a sky dome around the eye: a length past 1e8
+    EXPECT_FALSE(ruleFor("dome_1e3", R"({"type": "sphere", "radius": 1e3, "material": "m"})").sizes);
+    EXPECT_TRUE(ruleFor("dome_1e20", R"({"type": "sphere", "radius": 1e20, "material": "m"})").sizes);
+    // a sphere far smaller than the scene's reach, a quad far larger
+    std::string small = R"({"type": "sphere", "center": [0, 0, 0], "radius": )";
+    EXPECT_FALSE(ruleFor("tiny_1e-6", small + R"(1e-6, "material": "m"})").sizes);
+    EXPECT_TRUE(ruleFor("tiny_1e-9", small + R"(1e-9, "material": "m"})").sizes);
+    EXPECT_TRUE(ruleFor("quad_1e9", R"({"type": "quad", "u": [1e9, 0, 0], "v": [0, 0, 1e9], "material": "m"})").sizes);
+    // the shininess alone
+    std::string ball = small + R"(1, "material": "m"})";
+    EXPECT_FALSE(ruleFor("shininess_9999", ball, R"({"shininess": 9999})").shininess);
+    EXPECT_TRUE(ruleFor("shininess_1e4", ball, R"({"shininess": 1e4})").shininess);
+    EXPECT_FALSE(ruleFor("shininess_1e4", ball, R"({"shininess": 1e4})").sizes);
+    // the hard cases that need it, and one far from the world's origin that
+    // camera space makes ordinary
+    auto rule = [](const std::string& scene) {
+        return rg::needsCarefulNumerics(rg::toCameraSpace(rg::loadScene(RG_SOURCE_DIR "/tests/scenes/" + scene)));
+    };
+    EXPECT_TRUE(rule("ground_sphere_1e5.json").sizes);
+    EXPECT_TRUE(rule("sky_dome_1e20.json").sizes);
+    EXPECT_TRUE(rule("eye_on_sphere.json").sizes);  // the eye on a surface: no distance to it
+    EXPECT_TRUE(rule("shininess_1e6.json").shininess);
+    rg::CarefulNumerics far = rule("far_1e6.json");
+    EXPECT_FALSE(far.sizes || far.shininess);
 }
 
 }  // namespace

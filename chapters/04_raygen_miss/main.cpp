@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
                           {.closestHit = "common/sphere.rchit",
                            .intersection = "common/sphere.rint"}},
         };
+        // The sphere test's branches for huge and tiny sizes only where the
+        // scene has them (kCarefulSizes; chapter 06's page).
+        rg::CarefulNumerics careful = rg::carefulNumerics(opts, scene);
+        rg::specialize(shaders, careful);
         rg::RtPipeline pipeline =
             rg::createRtPipeline(app.gpu, app.deletion, rt.descriptors.layout,
                                  sizeof(rg::gpu::RtPush), shaders);
@@ -105,6 +109,7 @@ int main(int argc, char** argv) {
                                         .frames = last.accumulated + 1,
                                         .antialias = last.antialias != 0};
         rg::finishRtRun(app, opts, scene, rt, target, times, reference,
-                        {{"parameters", params.values()}});
+                        {{"parameters", params.values()},
+                         {"numerics", rg::toJson(careful)}});
     });
 }

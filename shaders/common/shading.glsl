@@ -20,17 +20,19 @@ vec3 ambientTerm(GpuMaterial m) {
 
 // Length and direction of a vector of any size: |v|^2 overflows float past
 // 1.8e19 (a light seen from a sky dome of radius 1e20); then v is first
-// divided by its largest component.
+// divided by its largest component (only where the scene can be that
+// large: kCarefulSizes).
 float safeLength(vec3 v) {
     float vv = dot(v, v);
-    if (vv < 1e37) return sqrt(vv);
+    if (!kCarefulSizes || vv < 1e37) return sqrt(vv);
     float m = max(abs(v.x), max(abs(v.y), abs(v.z)));
     return m * length(v / m);
 }
 vec3 safeNormalize(vec3 v) {
     float vv = dot(v, v);
-    return vv < 1e37 ? v * inversesqrt(vv)
-                     : normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z))));
+    return !kCarefulSizes || vv < 1e37
+               ? v * inversesqrt(vv)
+               : normalize(v / max(abs(v.x), max(abs(v.y), abs(v.z))));
 }
 
 // [region visible]
@@ -66,14 +68,16 @@ bool lightVisible(vec3 origin, vec3 light) {
 
 // [region specular_power]
 // max(0, n.h)^shininess for any shininess: near the peak n.h rounds to 1
-// within 6e-8, which a power of 1e6 turns into 6 % (e^(-1e6 * 6e-8)). So
-// from a shininess of 1e4 on (where that error passes 6e-4) the power is
-// taken as exp(shininess * log(cos)) with 1 - cos from the vectors'
-// difference, |n - h|^2 / 2, exact where cos is near 1.
+// within 6e-8, which a power of 1e6 turns into 6 % (e^(-1e6 * 6e-8)). So in
+// a scene with a shininess of 1e4 or more (where that error passes 6e-4;
+// kCarefulShininess) the power is taken as exp(shininess * log(cos)) with
+// 1 - cos from the vectors' difference, |n - h|^2 / 2, exact where cos is
+// near 1. Every material of such a scene takes that path: a branch on each
+// material's shininess splits the GPU's threads (chapter 12: 1 % slower).
 float specularPower(vec3 n, vec3 h, float shininess) {
     float cosine = dot(n, h);
     if (cosine <= 0.0) return 0.0;
-    if (shininess < 1e4) return pow(cosine, shininess);
+    if (!kCarefulShininess) return pow(cosine, shininess);
     vec3 w = n - h;
     float x = 0.5 * dot(w, w);                                     // 1 - cos
     float logCosine = x < 1e-3 ? -x * (1.0 + x * (0.5 + x / 3.0))  // log(1 - x), series

@@ -1,7 +1,8 @@
 // Ray / sphere intersection for any radius and any distance. Plain GLSL that
 // also compiles as C++ with GLM (tests/test_sphere_intersection.cpp runs this
 // exact code in float on hard rays against double precision), hence the
-// RG_OUT and RG_PRECISE macros.
+// RG_OUT and RG_PRECISE macros. kCarefulSizes comes from rt_bindings.glsl
+// (tests/glsl_as_cpp.h in C++).
 #ifndef RG_OUT
 #define RG_OUT(T) out T
 #endif
@@ -75,12 +76,14 @@ float maxAbs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
 //   it well beyond c's rounding: outside and moving away, no root ahead;
 //   inside and moving in, the root ahead is q / |d|^2, exact anyway).
 // Sizes whose squares would over- or underflow (a sky dome of radius 1e20)
-// are first scaled by powers of two, which is exact.
+// are first scaled by powers of two, which is exact. Without
+// kCarefulSizes (a scene that needs neither, rt_scene.h) only Haines's
+// form is left.
 bool intersectSphere(vec3 o, vec3 d, vec3 centre, float r, RG_OUT(vec2) t) {
     vec3 f = o - centre;
     float a = dot(d, d), ff = dot(f, f), rr = r * r, m = max(ff, rr);
     float unit = 1.0f;                            // t in d's units per t found below
-    if (!(a > 1e-18f && a < 1e18f && m > 1e-18f && m < 1e18f)) {
+    if (kCarefulSizes && !(a > 1e-18f && a < 1e18f && m > 1e-18f && m < 1e18f)) {
         int e, ed;
         frexp(max(r, maxAbs(f)), e);
         frexp(maxAbs(d), ed);
@@ -91,7 +94,7 @@ bool intersectSphere(vec3 o, vec3 d, vec3 centre, float r, RG_OUT(vec2) t) {
     }
     float b = -dot(f, d), c = ff - rr, discriminant;
     float rounding = 4.0f * 5.9604645e-8f * ff;   // c's own rounding
-    bool near = abs(c) < 0.125f * ff;
+    bool near = kCarefulSizes && abs(c) < 0.125f * ff;
     if (near && c > rounding && b <= 0.0f) return false;
     if (!near || (c < -rounding && b > 0.0f)) {   // Haines's form
         vec3 l = f + (b / a) * d;                 // centre -> closest point of the line
