@@ -2,7 +2,8 @@
 """Tests of tools/docs.py, the check that keeps quoted code true to the code:
 on a small repository made in a temporary folder, a nested region is quoted
 whole and without inner markers, and a page holding a truncated listing (what
-the old parser produced) fails the check."""
+the old parser produced) fails the check. Also tools/site.sh's repository
+link: a clone's public origin as its web address, and none for any other."""
 import pathlib
 import subprocess
 import sys
@@ -10,6 +11,7 @@ import tempfile
 import unittest
 
 DOCS_PY = pathlib.Path(__file__).resolve().parent.parent / "tools" / "docs.py"
+SITE_SH = DOCS_PY.parent / "site.sh"
 
 SOURCE = """\
 void f() {
@@ -131,6 +133,39 @@ class DocsCheck(unittest.TestCase):
         r = docs(self.root, "--check")
         self.assertEqual(r.returncode, 1)
         self.assertIn("no region 'nothere'", r.stderr)
+
+
+class SiteRepoLink(unittest.TestCase):
+    """The site links the repository only where the clone says where it is
+    public; the addresses here are made up for the test and never built."""
+
+    def link(self, origin):
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            (root / "tools").mkdir()
+            (root / "tools" / "site.sh").write_bytes(SITE_SH.read_bytes())
+            subprocess.run(["git", "init", "-q", str(root)], check=True)
+            if origin:
+                subprocess.run(["git", "-C", str(root), "remote", "add", "origin", origin],
+                               check=True)
+            r = subprocess.run(["bash", str(root / "tools" / "site.sh"), "--repo-url"],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return r.stdout.strip()
+
+    def test_public_origins_become_web_addresses(self):
+        self.assertEqual(self.link("git@github.com:someone/rayglass.git"),
+                         "https://github.com/someone/rayglass")
+        self.assertEqual(self.link("ssh://git@github.com/someone/rayglass.git"),
+                         "https://github.com/someone/rayglass")
+        # a token in the origin never reaches a page
+        self.assertEqual(self.link("https://user:token@gitlab.com/a/b.git"),
+                         "https://gitlab.com/a/b")
+
+    def test_no_public_origin_no_link(self):
+        self.assertEqual(self.link(""), "")
+        self.assertEqual(self.link("/srv/git/rayglass"), "")
+        self.assertEqual(self.link("file:///srv/git/rayglass"), "")
 
 
 if __name__ == "__main__":
