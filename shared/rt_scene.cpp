@@ -33,9 +33,7 @@ CarefulNumerics needsCarefulNumerics(const Scene& scene) {
         const glm::dmat4& m = o.transform;
         double centre = glm::length(glm::dvec3(m[3])), stretch = largestStretch(m);
         if (o.type == ShapeType::Sphere) {
-            double shortest = std::min({glm::length(glm::dvec3(m[0])),
-                                        glm::length(glm::dvec3(m[1])),
-                                        glm::length(glm::dvec3(m[2]))});
+            double shortest = smallestStretch(m);
             // the eye's distance from the surface, at least (0: it may be on it)
             double nearest = centre > stretch     ? centre - stretch
                              : centre < shortest ? shortest - centre

@@ -29,6 +29,11 @@ double largestStretch(const glm::dmat4& m) {
                      glm::length(glm::dvec3(m[2]))});
 }
 
+double smallestStretch(const glm::dmat4& m) {
+    return std::min({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                     glm::length(glm::dvec3(m[2]))});
+}
+
 namespace {
 
 using nlohmann::json;

@@ -107,6 +107,8 @@ struct Scene {
 // applies (the format's transforms are rotations times scales, whose columns
 // are orthogonal), an ellipsoid's longest semi-axis.
 double largestStretch(const glm::dmat4& transform);
+// The shortest such column: an ellipsoid's shortest semi-axis.
+double smallestStretch(const glm::dmat4& transform);
 
 // Chapter 13: the Beer-Lambert coefficient of a medium in which white light
 // keeps `color` after `distance` (glTF's KHR_materials_volume): -ln(color) / distance.
