@@ -91,7 +91,7 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define SHAPE_QUAD 1u
 #define SHAPE_MESH 2u
 
-// Hit groups in the SBT: one per shape and ray type (see shared/sbt.h).
+// Hit groups in the SBT: one per shape and ray type (see shared/raytracing/sbt.h).
 #define HIT_GROUP_QUAD 0u
 #define HIT_GROUP_SPHERE 1u
 // triangle meshes (chapter 12) and the tessellated sphere (--sphere-mesh)

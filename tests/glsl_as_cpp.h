@@ -1,7 +1,7 @@
 // The shaders' plain-GLSL files compiled as C++ (GLM supplies GLSL's types
 // and functions), so that the unit tests check the very code the GPU runs.
 #pragma once
-#include "sampling.h"  // sampling.glsl, which the CPU reference uses too
+#include "reference/sampling.h"  // sampling.glsl, which the CPU reference uses too
 
 namespace shader {
 #define RG_OUT(T) T&  // GLSL's `out` parameters

@@ -1,6 +1,6 @@
 #include "harness.h"
 
-#include "display.h"
+#include "core/display.h"
 
 #include <stb_image.h>
 

@@ -29,7 +29,7 @@ nlohmann::json readJson(const std::string& path);
 // A fresh folder for one test's files, under the build tree.
 std::string outputDir(const std::string& name);
 
-// The display value (0-255) that a linear value turns into (shared/display.h).
+// The display value (0-255) that a linear value turns into (shared/core/display.h).
 int display8(double linear);
 
 // Every report from a clean run: right size, validation clean, GPU time measured.

@@ -9,8 +9,8 @@
 #pragma once
 #include "harness.h"
 
-#include "display.h"
-#include "output.h"
+#include "core/display.h"
+#include "core/image.h"
 
 #include <algorithm>
 #include <cmath>

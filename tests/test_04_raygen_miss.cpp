@@ -5,8 +5,8 @@
 // with the eye exactly on a sphere (the rule for hits at the eye).
 #include "harness.h"
 
-#include "output.h"
-#include "reference.h"
+#include "core/image.h"
+#include "reference/reference.h"
 
 #include <cmath>
 #include <fstream>

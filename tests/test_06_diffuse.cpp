@@ -1,8 +1,8 @@
 // Chapter 06's own experiment; the reference and hard-case tests of every
 // shading chapter are in test_reference.cpp.
+#include "core/image.h"
 #include "harness.h"
-#include "output.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 namespace {
 

@@ -5,13 +5,13 @@
 #include "harness.h"
 #include "optics_image.h"
 
-#include "files.h"
-#include "mesh.h"
-#include "display.h"
-#include "mesh_file.h"
-#include "output.h"
-#include "reference.h"
-#include "scene.h"
+#include "core/display.h"
+#include "core/files.h"
+#include "core/image.h"
+#include "reference/reference.h"
+#include "scene/mesh.h"
+#include "scene/mesh_file.h"
+#include "scene/scene.h"
 
 #include <cmath>
 #include <filesystem>

@@ -15,7 +15,7 @@
 #include <fstream>
 #include <glm/glm.hpp>
 
-#include "output.h"
+#include "core/image.h"
 
 namespace {
 

@@ -1,11 +1,11 @@
-// The window's camera (shared/camera_control.h) and the parameter
+// The window's camera (shared/viewer/camera_control.h) and the parameter
 // declaration that feeds both the command line and the overlay
-// (shared/params.h): pure CPU, no window.
+// (shared/core/params.h): pure CPU, no window.
 #include <gtest/gtest.h>
 
-#include "camera_control.h"
-#include "params.h"
-#include "rt_scene.h"
+#include "core/params.h"
+#include "raytracing/rt_scene.h"
+#include "viewer/camera_control.h"
 
 #include <CLI/CLI.hpp>
 

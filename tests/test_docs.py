@@ -12,6 +12,7 @@ import tempfile
 import unittest
 
 DOCS_PY = pathlib.Path(__file__).resolve().parent.parent / "tools" / "docs.py"
+CODE_MAP_PY = DOCS_PY.parent / "code_map.py"
 SITE_SH = DOCS_PY.parent / "site.sh"
 
 SOURCE = """\
@@ -119,6 +120,25 @@ class DocsCheck(unittest.TestCase):
         (self.root / "docs" / "03_c.md").write_text("# 03 · Renamed\n")
         self.assertEqual(docs(self.root, "--check").returncode, 1)  # the next page's title changed
 
+    def test_footer_links_the_shared_modules_a_chapter_includes(self):
+        for n, name in ((1, "01_a"), (2, "02_b")):
+            (self.root / "chapters" / name).mkdir(parents=True)
+            (self.root / "docs" / f"{name}.md").write_text(f"# {n:02d} · Title {n}\n")
+        (self.root / "shared" / "vulkan").mkdir(parents=True)
+        (self.root / "shared" / "core").mkdir(parents=True)
+        (self.root / "shared" / "vulkan" / "context.h").write_text("")
+        (self.root / "shared" / "core" / "cli.h").write_text("")
+        (self.root / "chapters" / "02_b" / "main.cpp").write_text(
+            '#include "vulkan/context.h"\n#include "core/cli.h"\n#include <vector>\n')
+        (self.root / "chapters" / "01_a" / "main.cpp").write_text("int main() {}\n")
+        self.page("# 02 · Title 2\n<!-- footer: 02_b -->\n<!-- end -->\n", "02_b.md")
+        self.assertEqual(docs(self.root, "--write").returncode, 0)
+        text = (self.root / "docs" / "02_b.md").read_text()
+        # bottom layer first, each a link to its file, and the map
+        self.assertIn("**Shared modules it includes:** [`core/cli.h`](../shared/core/cli.h) · "
+                      "[`vulkan/context.h`](../shared/vulkan/context.h) ([code map](code-map.md))",
+                      text)
+
     def test_a_block_without_its_end_is_an_error_and_writes_nothing(self):
         body = ("<!-- snippet: a.rgen#inner -->\n\nProse that --write must not swallow.\n\n"
                 "<!-- snippet: a.rgen#outer -->\n<!-- end -->\n")
@@ -134,6 +154,65 @@ class DocsCheck(unittest.TestCase):
         r = docs(self.root, "--check")
         self.assertEqual(r.returncode, 1)
         self.assertIn("no region 'nothere'", r.stderr)
+
+
+def code_map(root):
+    return subprocess.run([sys.executable, str(CODE_MAP_PY), "--root", str(root), "--check"],
+                          capture_output=True, text=True)
+
+
+class CodeMapCheck(unittest.TestCase):
+    """tools/code_map.py on a small shared/ made in a temporary folder: it
+    passes as made, and each fault it exists for makes it fail."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = pathlib.Path(self.tmp.name)
+        for folder in ("core", "vulkan"):
+            (self.root / "shared" / folder).mkdir(parents=True)
+            (self.root / "shared" / folder / "README.md").write_text(f"# {folder}/\n")
+        (self.root / "shared" / "vk_check.h").write_text("")
+        (self.root / "shared" / "core" / "files.h").write_text('#include "vk_check.h"\n')
+        (self.root / "shared" / "vulkan" / "context.h").write_text('#include "core/files.h"\n')
+        (self.root / "shared" / "vulkan" / "context.cpp").write_text('#include "vulkan/context.h"\n')
+        (self.root / "docs").mkdir()
+        (self.root / "docs" / "code-map.md").write_text(
+            "`core/` `core/files` `vulkan/` `vulkan/context`\n")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def fails_with(self, words):
+        r = code_map(self.root)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn(words, r.stderr)
+
+    def test_a_clean_tree_passes(self):
+        r = code_map(self.root)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_an_include_that_climbs_up_fails(self):
+        (self.root / "shared" / "core" / "files.h").write_text('#include "vulkan/context.h"\n')
+        self.fails_with("shared/core/files.h: includes vulkan/context.h, which climbs from core/ "
+                        "up to vulkan/")
+
+    def test_a_module_missing_from_the_map_fails(self):
+        (self.root / "shared" / "vulkan" / "window.h").write_text("")
+        self.fails_with("does not name the module `vulkan/window`")
+
+    def test_a_file_directly_in_shared_fails(self):
+        (self.root / "shared" / "helpers.h").write_text("")
+        self.fails_with("shared/helpers.h: directly in shared/")
+
+    def test_a_long_file_fails(self):
+        (self.root / "shared" / "core" / "files.h").write_text("int a;\n" * 600)
+        self.fails_with("shared/core/files.h: 600 lines")
+
+    def test_a_folder_without_readme_or_layer_fails(self):
+        (self.root / "shared" / "vulkan" / "README.md").unlink()
+        self.fails_with("shared/vulkan/: no README.md")
+        (self.root / "shared" / "misc").mkdir()
+        self.fails_with("shared/misc/: not a layer")
 
 
 # A fresh Debian has no git (the CI's Debian 13 system): with no clone there

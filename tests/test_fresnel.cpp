@@ -7,7 +7,7 @@
 // that entered it from outside, always possible for light starting inside.
 #include <gtest/gtest.h>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 #include <cmath>
 #include <cstdio>

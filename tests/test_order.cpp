@@ -1,9 +1,9 @@
-// The order objects go into a structure in (shared/accel.cpp): median-split
+// The order objects go into a structure in (shared/raytracing/accel.cpp): median-split
 // order is a permutation of the objects, and every split lavapipe's builder
 // makes of the list at its middle index is a split in space.
 #include <gtest/gtest.h>
 
-#include "accel.h"
+#include "raytracing/accel.h"
 
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>

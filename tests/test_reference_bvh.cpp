@@ -1,10 +1,10 @@
-// The CPU reference's BVH (shared/reference.cpp) must find exactly what
+// The CPU reference's BVH (shared/reference/geometry.cpp) must find exactly what
 // testing every object finds: the same closest object at the same t, for
 // rays from outside, from inside spheres, grazing and axis-parallel, on
 // spheres, ellipsoids and quads.
 #include <gtest/gtest.h>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
@@ -31,7 +31,7 @@ rg::Scene randomScene(size_t n, unsigned seed) {
         }
         s.objects.push_back(o);
     }
-    s.objects.push_back(s.objects[3]);  // an exact copy: hidden, as scene.cpp marks it
+    s.objects.push_back(s.objects[3]);  // an exact copy: hidden, as scene_file.cpp marks it
     s.objects.back().hidden = true;
     return s;
 }

@@ -1,10 +1,10 @@
-// The SBT layout (shared/sbt.h) with ordinary and unusual device
+// The SBT layout (shared/raytracing/sbt.h) with ordinary and unusual device
 // properties: every region starts on shaderGroupBaseAlignment, every stride
 // is a multiple of shaderGroupHandleAlignment and holds a handle, raygen's
 // size equals its stride, and the regions do not overlap.
 #include <gtest/gtest.h>
 
-#include "sbt.h"
+#include "raytracing/sbt.h"
 
 namespace {
 

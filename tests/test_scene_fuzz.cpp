@@ -8,8 +8,8 @@
 // with a finite image and no validation message, or exit 2 with one line.
 #include "harness.h"
 
-#include "app.h"  // rg::InputError
-#include "scene.h"
+#include "app/app.h"  // rg::InputError
+#include "scene/scene.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,8 +2,8 @@
 // for every chapter that reads scenes.
 #include "harness.h"
 
-#include "rt_scene.h"
-#include "scene.h"
+#include "raytracing/rt_scene.h"
+#include "scene/scene.h"
 
 #include <fstream>
 

@@ -1,10 +1,10 @@
-// Shader hot reload without a window (shared/shader_reload.h): in a copy of
+// Shader hot reload without a window (shared/viewer/shader_reload.h): in a copy of
 // the shader tree, a saved file that a stage includes compiles every stage
 // again into SPIR-V; an error names its file and line and gives nothing to
 // build; F5 compiles unchanged sources; no sources means no reload. The
 // window's side (the pipeline swapped, the error in the overlay) is
 // tests/test_interactive.py --reload.
-#include "shader_reload.h"
+#include "viewer/shader_reload.h"
 
 #include <gtest/gtest.h>
 

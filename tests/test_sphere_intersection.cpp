@@ -4,7 +4,7 @@
 // origin on the surface, an origin inside.
 #include <gtest/gtest.h>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 #include <cmath>
 #include <glm/glm.hpp>

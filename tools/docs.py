@@ -31,6 +31,8 @@ import re
 import sys
 import textwrap
 
+from code_map import LAYERS, shared_includes
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BLOCK = re.compile(r"(<!-- (snippet|diff|footer): ([^>]*?) -->\n)(.*?)(<!-- end -->)", re.S)
 MARKER = re.compile(r"<!-- (snippet|diff|footer): ")  # inside a block: the block before lacks its end
@@ -138,7 +140,7 @@ def footer(root, chapter):
     if int(nn) >= 4:
         sources.append("shaders/common")  # the payload, hit, miss and shading code chapters share
     if int(nn) >= 5:
-        sources.append("shared/rt_chapter.cpp")  # chapter 04's main() for the shading chapters
+        sources.append("shared/chapter/rt_chapter.cpp")  # chapter 04's main() for the shading chapters
     sources += [f.relative_to(root).as_posix() for f in sorted((root / "tests").glob(f"test_{nn}_*.cpp"))]
     if int(nn) >= 5:
         sources.append("tests/test_reference.cpp")
@@ -146,6 +148,12 @@ def footer(root, chapter):
     if missing:
         raise DocsError(f"footer {chapter}: missing {', '.join(missing)}")
     links = " · ".join(f"[`{s}`](../{s})" for s in sources)
+    used = modules_used(root, chapter)
+    modules = ""
+    if used:
+        modules = ("**Shared modules it includes:** " +
+                   " · ".join(f"[`{m}`](../shared/{m})" for m in used) +
+                   " ([code map](code-map.md))\n\n")
     i = names.index(chapter)
     if i + 1 < len(pages):
         after = names[i + 1]
@@ -168,7 +176,24 @@ def footer(root, chapter):
     block = "".join(f"{c.ljust(width)}# {why}\n" for c, why in commands)
     run = ("\n## Build and run this chapter\n\nFrom the repository's root, after the README's set-up:\n\n"
            f"```sh\n{block}```\n")
-    return run + f"\n## Next\n\n{upcoming}\n\n---\n\n**Sources:** {links}\n\n" + " · ".join(nav) + "\n"
+    return (run + f"\n## Next\n\n{upcoming}\n\n---\n\n**Sources:** {links}\n\n" + modules +
+            " · ".join(nav) + "\n")
+
+
+def modules_used(root, chapter):
+    """The shared/ headers a chapter's main.cpp includes, and, where it
+    includes chapter/rt_chapter.h, those that chapter 04's main() there
+    includes: bottom layer first (tools/code_map.py)."""
+    main = root / "chapters" / chapter / "main.cpp"
+    used = set(shared_includes(root, main)) if main.is_file() else set()
+    rt_chapter = root / "shared" / "chapter" / "rt_chapter.cpp"
+    if "chapter/rt_chapter.h" in used and rt_chapter.is_file():
+        used |= set(shared_includes(root, rt_chapter))
+
+    def order(m):
+        folder = m.split("/")[0]
+        return (LAYERS.index(folder) + 1 if folder in LAYERS else 0, m)
+    return sorted(used, key=order)
 
 
 def render(root, kind, arg):

@@ -64,7 +64,7 @@ class Svg:
 
 # --- chapter 03: what the order of a list does to a midpoint builder --------------------------------
 def median_split(points, order):
-    """shared/accel.cpp's splitAtMedian in 2D: longest axis, ceil(n / 2) to the front, ties by index."""
+    """shared/raytracing/accel.cpp's splitAtMedian in 2D: longest axis, ceil(n / 2) to the front, ties by index."""
     if len(order) <= 2:
         return order
     xs = [points[i][0] for i in order]
@@ -113,7 +113,7 @@ def split_order():
 
 # --- chapter 04: the SBT -------------------------------------------------------------------------
 def sbt_layout():
-    handle, handle_align, base_align = 32, 32, 64  # an example; shared/sbt.h computes it from the device
+    handle, handle_align, base_align = 32, 32, 64  # an example; shared/raytracing/sbt.h computes it from the device
     stride = -(-handle // handle_align) * handle_align
     up = lambda v: -(-v // base_align) * base_align
     raygen_size = up(stride)

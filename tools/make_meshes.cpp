@@ -15,8 +15,8 @@
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
 //                    embedded PNG) repeated 10 times each way, opaque and open
-#include "files.h"
-#include "mesh.h"
+#include "core/files.h"
+#include "scene/mesh.h"
 
 #include <nlohmann/json.hpp>
 #include <stb_image_write.h>

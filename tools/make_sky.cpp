@@ -4,7 +4,7 @@
 //   make_sky OUT.png [width]
 // Directions: u = 0.5 + atan2(x, -z) / 2pi (looking down -z is the centre),
 // v = acos(y) / pi (v = 0 straight up).
-#include "files.h"
+#include "core/files.h"
 
 #include <stb_image_write.h>
 
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
             p[1] = (unsigned char)std::lround(srgb(c.g) * 255);
             p[2] = (unsigned char)std::lround(srgb(c.b) * 255);
         }
-    std::string png;  // encoded in memory, then written whole (shared/files.h)
+    std::string png;  // encoded in memory, then written whole (shared/core/files.h)
     auto append = [](void* context, void* data, int size) {
         static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
     };

@@ -2,7 +2,7 @@
 """Puts chapter renders side by side into one PNG for the docs.
 
 Reads the PFM files the chapters write beside their PNGs (linear float RGB),
-applies RayGlass's one display transform (shared/display.h: clamp to [0, 1],
+applies RayGlass's one display transform (shared/core/display.h: clamp to [0, 1],
 then sRGB) and writes an 8-bit PNG, with a gap between the panels. Python's
 standard library only.
 
@@ -32,7 +32,7 @@ def read_pfm(path):
 
 
 def to_display8(linear):
-    if linear != linear:  # NaN: black, as shared/display.h
+    if linear != linear:  # NaN: black, as shared/core/display.h
         return 0
     c = min(1.0, max(0.0, linear))
     s = 12.92 * c if c <= 0.0031308 else 1.055 * math.pow(c, 1 / 2.4) - 0.055

@@ -3,10 +3,10 @@
 // --out: perf.json (every number), perf.md (the tables), convergence.dat (for
 // the plots). Needs only the chapter executables beside it, so it runs on a
 // machine without jq or gnuplot; tools/perf-report.sh makes the plots.
-#include "files.h"
-#include "output.h"
-#include "reference.h"
-#include "scene.h"
+#include "core/files.h"
+#include "core/image.h"
+#include "reference/reference.h"
+#include "scene/scene.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

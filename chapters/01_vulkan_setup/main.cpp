@@ -3,17 +3,18 @@
 // writes a test pattern into a storage image, and shows it in a window or
 // writes it to a PNG. Everything the CPU does here waits for the GPU
 // (vkQueueWaitIdle, fences); chapter 02 removes those waits.
-#include "app.h"
-#include "cli.h"
-#include "context.h"
-#include "device_limits.h"
-#include "gpu_timer.h"
+#include "app/app.h"
+#include "app/report.h"
+#include "core/cli.h"
+#include "core/image.h"
+#include "core/interrupt.h"
 #include "host_device.h"
-#include "interrupt.h"
-#include "output.h"
-#include "resources.h"
 #include "vk_check.h"
-#include "window.h"
+#include "vulkan/context.h"
+#include "vulkan/device_limits.h"
+#include "vulkan/gpu_timer.h"
+#include "vulkan/resources.h"
+#include "vulkan/window.h"
 
 #include <chrono>
 #include <cstdio>
@@ -309,7 +310,7 @@ int main(int argc, char** argv) {
             times.cpuMs.push_back(std::chrono::duration<double, std::milli>(
                                       std::chrono::steady_clock::now() - cpuStart)
                                       .count());
-            // Ctrl-C: keep the frames done (shared/interrupt.h)
+            // Ctrl-C: keep the frames done (shared/core/interrupt.h)
             if (rg::interrupted()) break;
         }
         std::printf("GPU time for the dispatch: %.3f ms (median of %zu)\n",

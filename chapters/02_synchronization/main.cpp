@@ -2,18 +2,19 @@
 // Chapter 01 waited for the GPU after every submission. Here the CPU records
 // frame N+1 while the GPU renders frame N ("frames in flight"): fences,
 // semaphores, an event and pipeline barriers keep them apart. That frame
-// loop lives in shared/frame_loop.cpp, because every later chapter presents
+// loop lives in shared/vulkan/frame_loop.cpp, because every later chapter presents
 // through it; this file sets it up and animates chapter 01's pattern.
-#include "app.h"
-#include "cli.h"
-#include "descriptors.h"
-#include "device_limits.h"
-#include "frame_loop.h"
+#include "app/app.h"
+#include "app/report.h"
+#include "core/cli.h"
+#include "core/image.h"
+#include "core/interrupt.h"
 #include "host_device.h"
-#include "interrupt.h"
-#include "output.h"
-#include "resources.h"
 #include "vk_check.h"
+#include "vulkan/descriptors.h"
+#include "vulkan/device_limits.h"
+#include "vulkan/frame_loop.h"
+#include "vulkan/resources.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,7 +31,7 @@ struct ComputePass {
 };
 
 // Chapter 01's descriptors and compute pipeline, through the shared helpers
-// (shared/descriptors.cpp holds chapter 01's code for any number of bindings).
+// (shared/vulkan/descriptors.cpp holds chapter 01's code for any number of bindings).
 ComputePass createPatternPass(const rg::Gpu& gpu, const rg::Image& target,
                               rg::DeletionQueue& deletion) {
     ComputePass p;

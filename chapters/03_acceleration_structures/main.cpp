@@ -6,17 +6,18 @@
 // moving object needs nothing else. The image is the TLAS's view from above:
 // each instance's box, drawn from the buffer the TLAS is built from.
 // Chapter 04 traces rays through these structures.
-#include "accel.h"
-#include "app.h"
-#include "descriptors.h"
-#include "device_limits.h"
-#include "frame_loop.h"
-#include "gpu_timer.h"
+#include "app/app.h"
+#include "app/report.h"
+#include "core/image.h"
+#include "core/interrupt.h"
 #include "host_device.h"
-#include "interrupt.h"
-#include "output.h"
-#include "scene.h"
+#include "raytracing/accel.h"
+#include "scene/scene.h"
 #include "vk_check.h"
+#include "vulkan/descriptors.h"
+#include "vulkan/device_limits.h"
+#include "vulkan/frame_loop.h"
+#include "vulkan/gpu_timer.h"
 
 #include <CLI/CLI.hpp>
 

@@ -4,14 +4,14 @@
 // camera ray per pixel through chapter 03's acceleration structures. A hit
 // shows the surface normal; a miss shows the sky image. --reference renders
 // the same picture on the CPU in double precision and reports the error.
-#include "app.h"
-#include "frame_loop.h"
+#include "app/app.h"
+#include "app/rt_report.h"
 #include "host_device.h"
-#include "rt_pipeline.h"
-#include "rt_report.h"
-#include "rt_scene.h"
-#include "scene.h"
-#include "viewer.h"
+#include "raytracing/rt_pipeline.h"
+#include "raytracing/rt_scene.h"
+#include "scene/scene.h"
+#include "viewer/viewer.h"
+#include "vulkan/frame_loop.h"
 
 #include <CLI/CLI.hpp>
 
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
                            VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         // [region viewer]
         // In a window: a camera to fly, an overlay with timings, a target that
-        // follows the window's size (shared/viewer.h). Headless: nothing.
+        // follows the window's size (shared/viewer/viewer.h). Headless: nothing.
         rg::Viewer viewer(app, opts, scene, rt, target, loop, params);
         // Saving a shader (or F5) compiles it again: then the pipeline from it.
         viewer.reloadShaders(

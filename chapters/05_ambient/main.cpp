@@ -1,6 +1,6 @@
 // Chapter 05 - Ambient light (thesis 3.1). Only the ray generation shader
 // changes (shaders/05_ambient/raygen.rgen): a hit is k_a * I_a.
-#include "rt_chapter.h"
+#include "chapter/rt_chapter.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

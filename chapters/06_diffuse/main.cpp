@@ -3,7 +3,7 @@
 // shadow rays have their own miss shader and hit groups.
 #include <cstdlib>
 
-#include "rt_chapter.h"
+#include "chapter/rt_chapter.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

@@ -1,6 +1,6 @@
 // Chapter 07 - Specular light (thesis 3.3). The ray generation shader adds
 // Blinn-Phong's k_s * I_i * max(0, n.h)^shininess.
-#include "rt_chapter.h"
+#include "chapter/rt_chapter.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

@@ -1,6 +1,6 @@
 // Chapter 08 - Reflection (thesis 4.1). The ray generation shader bounces
 // rays off mirrors in a loop, up to --depth times.
-#include "rt_options.h"
+#include "chapter/rt_options.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

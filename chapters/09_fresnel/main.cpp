@@ -1,8 +1,8 @@
 // Chapter 09 - Fresnel (thesis 4.1.1). Dielectrics reflect more at grazing
 // angles: Schlick's approximation (--fresnel schlick, schlick-ior) or the
 // exact equations (--fresnel exact).
-#include "reference.h"
-#include "rt_options.h"
+#include "chapter/rt_options.h"
+#include "reference/reference.h"
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // reflected and a refracted branch (Snell's law, Fresnel weights, total
 // internal reflection); the ray generation shader follows both, and the
 // trees that go on past the first hit get a launch of their own.
-#include "rt_options.h"
+#include "chapter/rt_options.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

@@ -3,7 +3,7 @@
 // direction; --pattern chooses how the samples are spread. Frames accumulate
 // progressively (in a window the overlay changes them live); the default
 // pattern continues one Sobol sequence across frames.
-#include "rt_options.h"
+#include "chapter/rt_options.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

@@ -9,7 +9,7 @@
 // wrong side of the flat triangle is found again with the triangle's own
 // normal (shaders/common/ray_tree.glsl). Everything else of chapters 04-11
 // works on meshes and spheres together.
-#include "rt_options.h"
+#include "chapter/rt_options.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

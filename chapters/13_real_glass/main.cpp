@@ -7,7 +7,7 @@
 // index depends on the wavelength (dispersion): paths carry one wavelength
 // each, and frames accumulate into the colour. The Fresnel equations are
 // exact by default: Schlick's f0 is for air only.
-#include "rt_options.h"
+#include "chapter/rt_options.h"
 
 int main(int argc, char** argv) {
     return rg::runRtChapter(argc, argv, {

@@ -1,7 +1,7 @@
 // Sample points for rough reflections (chapter 11) and inside pixels
 // (chapter 04's antialiasing), deterministic: the same pixel, frame and
 // sample index always give the same point, so a run can be repeated
-// exactly. Plain GLSL that also compiles as C++ (shared/sampling.h).
+// exactly. Plain GLSL that also compiles as C++ (shared/reference/sampling.h).
 #ifndef SAMPLING_GLSL
 #define SAMPLING_GLSL
 #define PATTERN_UNIFORM 0u     // independent random points

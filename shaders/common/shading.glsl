@@ -1,7 +1,7 @@
 // Blinn-Phong shading (thesis 3), defined once for every chapter's raygen:
 // ambient (3.1), diffuse with a shadow ray to each light (3.2), specular
 // with the half vector (3.3). Radiance is linear; the display transform
-// happens once, at the end (shared/display.h).
+// happens once, at the end (shared/core/display.h).
 #ifndef SHADING_GLSL
 #define SHADING_GLSL
 #include "offset.glsl"

@@ -34,7 +34,7 @@ bool queueTree(uvec2 pixel) {
 }
 
 // One launch still counts the trees that go on, so that the next frames
-// can choose (shared/two_launches.cpp); the count is all it writes.
+// can choose (shared/raytracing/two_launches.cpp); the count is all it writes.
 void countTree() {
     if (push.treeQueue != uvec2(0u)) atomicAdd(TreeQueue(push.treeQueue).count, 1u);
 }

@@ -1,0 +1,194 @@
+#include "chapter/rt_chapter.h"
+
+#include "app/app.h"
+#include "app/rt_report.h"
+#include "host_device.h"
+#include "raytracing/rt_pipeline.h"
+#include "raytracing/rt_scene.h"
+#include "raytracing/two_launches.h"
+#include "scene/scene.h"
+#include "viewer/viewer.h"
+#include "vulkan/device_limits.h"
+#include "vulkan/frame_loop.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+
+namespace rg {
+
+int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
+    Options opts;
+    RtChapterSettings settings;
+    Params params;
+    if (chapter.options) chapter.options(params, settings);  // the chapter's own first
+    params
+        .integer("--sphere-mesh", settings.sphereMesh,
+                 "Spheres as icospheres subdivided this often (0: analytic spheres)", 0,
+                 7)
+        .live = false;  // the acceleration structures are built once
+    enum { kAuto, kOn, kOff };  // --antialias, as chapter 04
+    int antialias = kAuto;
+    params.choice("--antialias", antialias,
+                  "Average frames of rays through new points in each pixel "
+                  "(auto: on in a window, off headless)",
+                  {"auto", "on", "off"})
+        .section = "view";  // the overlay's View and light section
+    params
+        .number("--exposure", settings.exposure,
+                "Exposure in stops: the image is the light times 2^EV", -10, 10)
+        // the overlay's View section, with the camera's and the lights' controls
+        .section = "view";
+    auto extra = [&](CLI::App& app, Options& o) {
+        addSceneOptions(app, o, true);
+        params.addTo(app);
+    };
+    if (auto exit =
+            parseCommandLine(argc, argv, chapter.name, chapter.description, opts, extra))
+        return *exit;
+    // the report says which
+    if (antialias == kAuto) antialias = opts.headless ? kOff : kOn;
+    return runChapter(opts, [&] {
+        auto loadStart = std::chrono::steady_clock::now();
+        Scene scene = toCameraSpace(
+            loadScene(opts.scene.empty() ? defaultScenePath(chapter.scene) : opts.scene));
+        double loadMs = std::chrono::duration<double, std::milli>(
+                            std::chrono::steady_clock::now() - loadStart)
+                            .count();
+        if (!chapter.meshes) refuseMeshes(scene);
+        if (chapter.stage == ReferenceStage::Media) refuseUnstackableMedia(scene);
+        App app;
+        initApp(app, opts, chapter.title);
+        // What grows with the image: the ray counts (4 bytes a pixel) and
+        // chapter 10's queue of ray trees (a quarter of the pixels, 128 bytes each).
+        double queueBytesPerPixel =
+            settings.launches >= 0 ? sizeof(gpu::QueuedTree) / 4.0 : 0.0;
+        checkImageFits(
+            app.gpu, opts.width, opts.height,
+            {.storageBytesPerPixel = 4, .addressedBytesPerPixel = queueBytesPerPixel});
+        Image target = createImage2D(
+            app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        RtScene rt = uploadScene(app.gpu, app.deletion, scene, target,
+                                 {.groupSpheres = opts.groupSpheres,
+                                  .fileOrder = opts.fileOrder,
+                                  .sphereMeshLevel = settings.sphereMesh});
+
+        // [region shaders]
+        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, mesh
+        // (primary rays), then the same three for shadow rays: no closest hit;
+        // the sphere still needs its intersection shader to be found at all.
+        RtShaders shaders{
+            .raygen =
+                (chapter.raygenFolder.empty() ? chapter.name : chapter.raygenFolder) +
+                "/raygen.rgen",
+            .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
+            .hitGroups = {{.closestHit = "common/quad.rchit"},
+                          {.closestHit = "common/sphere.rchit",
+                           .intersection = "common/sphere.rint"},
+                          {.closestHit = "common/mesh.rchit"},
+                          {},
+                          {.intersection = "common/sphere.rint"},
+                          {}},
+        };
+        // [end]
+        // A run that never averages frames gets a shader without the jitter
+        // and the running mean (rt_bindings.glsl's kAverages): a window may
+        // switch them on at any time, headless runs only from the start.
+        shaders.raygenAverages = app.window || antialias == kOn || settings.accumulate;
+        // Branches for huge and tiny numbers only for a scene that has them
+        // (chapter 06's page).
+        CarefulNumerics careful = carefulNumerics(opts, scene);
+        specialize(shaders, careful);
+        RtPipeline pipeline = createRtPipeline(
+            app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush), shaders);
+        // Chapter 10: two launches, where the driver can size a launch from a
+        // GPU buffer (an optional feature).
+        bool canTwo = settings.launches >= 0 && app.gpu.physical.traceRaysIndirect;
+        if (settings.launches >= 0 && !canTwo)
+            std::printf(
+                "note: the driver cannot size a launch on the GPU "
+                "(rayTracingPipelineTraceRaysIndirect): one launch\n");
+        TwoLaunches two =
+            canTwo ? createTwoLaunches(app.gpu, app.deletion, rt.descriptors.layout,
+                                       shaders, rt.width * rt.height)
+                   : TwoLaunches{};
+        FrameLoop loop(app.gpu, app.window.get(), target,
+                       VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
+        // a window's camera, overlay and keys
+        Viewer viewer(app, opts, scene, rt, target, loop, params);
+        // F5, a save
+        viewer.reloadShaders(shaders, [&](const RtShaders& compiled,
+                                          DeletionQueue& deletion) {
+            RtPipeline fresh = createRtPipeline(app.gpu, deletion, rt.descriptors.layout,
+                                                sizeof(gpu::RtPush), compiled);
+            if (canTwo)
+                two = createTwoLaunches(app.gpu, deletion, rt.descriptors.layout,
+                                        compiled, rt.width * rt.height);
+            pipeline = fresh;
+        });
+        gpu::RtPush last{};  // the last frame's: what the reference checks
+        FrameTimes times = loop.run(opts.framesToRun(), [&](VkCommandBuffer cmd,
+                                                            uint32_t frame) {
+            // frames since the picture last changed
+            uint32_t unchanged = viewer.update(cmd, frame);
+            VkExtent2D size = viewer.launchSize();  // smaller while a slow view moves
+            bool jitter = antialias != kOff;
+            viewer.averaging = jitter || settings.accumulate;
+            gpu::RtPush push{
+                .frame = frame,
+                .maxDepth = uint32_t(settings.maxDepth),
+                .samplesPerHit = uint32_t(settings.samplesPerHit),
+                .pattern = uint32_t(settings.pattern),
+                .fresnelMode = uint32_t(settings.fresnelMode),
+                .accumulated = viewer.averaging ? unchanged : 0,
+                .epsilon = settings.epsilon,
+                .wavelength = settings.wavelength,
+                .exposure = std::exp2(settings.exposure),
+                .antialias = jitter,
+            };
+            last = push;
+            if (canTwo)
+                recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, size.width,
+                               size.height, Launches(settings.launches), frame);
+            else
+                recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push),
+                            size.width, size.height);
+        });
+        // closed while moving: the PNG, the report and --reference get a full frame
+        if (viewer.previewed()) {
+            last.accumulated = 0;
+            submitOnce(app.gpu, [&](VkCommandBuffer cmd) {
+                memoryBarrier(cmd,
+                              VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR |
+                                  VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+                recordTrace(cmd, pipeline, rt.descriptors.set, &last, sizeof(last),
+                            rt.width, rt.height);
+            });
+        }
+        ReferenceSettings reference{.stage = chapter.stage,
+                                    .maxDepth = settings.maxDepth,
+                                    .fresnelMode = settings.fresnelMode,
+                                    .samples = settings.referenceSamples,
+                                    .wavelength = settings.wavelength,
+                                    .frames = last.accumulated + 1,
+                                    .firstFrame = last.frame - last.accumulated,
+                                    .exposure = last.exposure,
+                                    .antialias = last.antialias != 0};
+        // the last frame's launches
+        nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},
+                                {"parameters", params.values()},
+                                {"numerics", toJson(careful)}};
+        if (canTwo)
+            extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},
+                                             {"pixels", rt.width * rt.height},
+                                             {"queue_capacity", two.capacity}};
+        finishRtRun(app, opts, scene, rt, target, times, reference, extra);
+    });
+}
+
+}  // namespace rg

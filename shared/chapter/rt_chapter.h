@@ -1,0 +1,50 @@
+// Chapters 05-11 change only their shaders (and the reference's stage): this
+// is chapter 04's main() for them, with the shadow ray type added to the SBT.
+#pragma once
+#include "core/cli.h"
+#include "core/params.h"
+#include "reference/reference.h"
+
+#include <functional>
+#include <string>
+
+namespace rg {
+
+struct RtChapterSettings {
+    int maxDepth = 1;
+    int samplesPerHit = 1;
+    int pattern = 0;
+    int fresnelMode = 0;
+    // > 0: a fixed offset for secondary rays (chapter 06's experiment)
+    float epsilon = 0;
+    bool accumulate = false;   // chapter 11: average frames progressively
+    // chapter 11: samples per rough hit in the converged CPU reference
+    int referenceSamples = 0;
+    // > 0: spheres as icospheres of this subdivision level (performance.md)
+    int sphereMesh = 0;
+    // chapter 13: >= 380, every path at this wavelength (nm); else one drawn per path
+    float wavelength = 0;
+    // chapter 10's --launches: 0 auto, 1 one, 2 two (two_launches.h); -1: one, no choice
+    int launches = -1;
+    // --exposure, in stops: the image is the radiance times 2^exposure
+    float exposure = 0;
+};
+
+struct RtChapter {
+    std::string name;         // "05_ambient": the executable, its shader folder
+    std::string description;  // for --help
+    std::string title;        // the window's title
+    ReferenceStage stage;     // what the CPU reference renders
+    // the ray generation shader's folder if not `name`'s (chapter 12 uses 11's)
+    std::string raygenFolder;
+    bool meshes = false;      // chapter 12 on: scenes may hold triangle meshes
+    // the scene without --scene: bin/assets/scenes/<scene>.json
+    std::string scene = "default";
+    // Declares the chapter's own parameters (chapter 06: --fixed-epsilon,
+    // ...): each is a command-line option and a control in the overlay.
+    std::function<void(Params&, RtChapterSettings&)> options;
+};
+
+int runRtChapter(int argc, char** argv, const RtChapter& chapter);
+
+}  // namespace rg

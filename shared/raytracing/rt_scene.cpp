@@ -1,0 +1,362 @@
+#include "raytracing/rt_scene.h"
+
+#include "core/files.h"
+#include "host_device.h"
+#include "vk_check.h"
+#include "vulkan/device_limits.h"
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace rg {
+
+// [region needs_careful_rule]
+CarefulNumerics needsCarefulNumerics(const Scene& scene) {
+    // Near its surface a sphere's quadratic rounds by about 2^-24 of its
+    // radius R (sphere_intersect.glsl's c); seen from d > R / 1024 that
+    // is under 1e-4 of d, far below a pixel. Squares of lengths within
+    // 1e-8..1e8 neither overflow nor underflow, with margin.
+    const double kRatio = 1024.0, kSmallest = 1e-8, kLargest = 1e8;
+    CarefulNumerics careful{.sizes = false, .shininess = false};
+    for (const Material& m : scene.materials)
+        careful.shininess = careful.shininess || m.shininess >= 1e4;
+    double extent = 0;         // the farthest point from the eye (the origin)
+    double smallest = kLargest;  // the smallest sphere's shortest semi-axis
+    for (const PointLight& light : scene.lights)
+        extent = std::max(extent, glm::length(light.position));
+    for (const Object& o : scene.objects) {
+        const glm::dmat4& m = o.transform;
+        double centre = glm::length(glm::dvec3(m[3])), stretch = largestStretch(m);
+        if (o.type == ShapeType::Sphere) {
+            double shortest = smallestStretch(m);
+            // the eye's distance from the surface, at least (0: it may be on it)
+            double nearest = centre > stretch     ? centre - stretch
+                             : centre < shortest ? shortest - centre
+                                                 : 0.0;
+            careful.sizes = careful.sizes || stretch > kRatio * nearest;
+            smallest = std::min(smallest, shortest);
+            extent = std::max(extent, centre + stretch);
+        } else {
+            // the unit quad's corners lie sqrt(2) from its centre
+            double reach = std::sqrt(2.0);
+            if (o.type == ShapeType::Mesh) {
+                const Mesh& mesh = *scene.meshes[o.mesh];
+                reach = glm::length(glm::max(glm::abs(glm::dvec3(mesh.lo)),
+                                             glm::abs(glm::dvec3(mesh.hi))));
+            }
+            extent = std::max(extent, centre + stretch * reach);
+        }
+    }
+    // A sphere's object space divides by its size: lengths grow by extent / smallest.
+    careful.sizes = careful.sizes || extent > kLargest || smallest < kSmallest ||
+                    extent > kLargest * smallest;
+    return careful;
+}
+// [end]
+
+CarefulNumerics carefulNumerics(const Options& opts, const Scene& scene) {
+    if (opts.numerics == Numerics::Auto) return needsCarefulNumerics(scene);
+    bool on = opts.numerics == Numerics::Careful;
+    return {.sizes = on, .shininess = on};
+}
+
+void specialize(RtShaders& shaders, const CarefulNumerics& careful) {
+    shaders.carefulSizes = careful.sizes;
+    shaders.carefulShininess = careful.shininess;
+}
+
+nlohmann::json toJson(const CarefulNumerics& careful) {
+    auto word = [](bool on) { return on ? "careful" : "fast"; };
+    return {{"sizes", word(careful.sizes)}, {"shininess", word(careful.shininess)}};
+}
+
+void cameraMatrices(const Camera& camera, double aspect, glm::mat4& viewInverse,
+                    glm::mat4& projInverse) {
+    glm::dmat4 view = glm::lookAt(camera.position, camera.lookAt, camera.up);
+    glm::dmat4 proj = glm::perspective(glm::radians(camera.fovYDeg), aspect, 0.1, 100.0);
+    proj[1][1] *= -1;  // Vulkan's clip space y points down; the image's top row looks up
+    viewInverse = glm::mat4(glm::inverse(view));
+    projInverse = glm::mat4(glm::inverse(proj));
+}
+
+namespace {
+template <typename T>
+Buffer storage(const Gpu& gpu, DeletionQueue& deletion, const std::vector<T>& data) {
+    // a binding needs a buffer
+    std::vector<T> nonEmpty = data.empty() ? std::vector<T>(1) : data;
+    return createDeviceBuffer(gpu, deletion, nonEmpty.data(), nonEmpty.size() * sizeof(T),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+glm::vec4 v4(const glm::dvec3& v, double w = 0) { return glm::vec4(glm::dvec4(v, w)); }
+Buffer createRayCounts(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
+                       uint32_t height) {
+    return createBuffer(
+        gpu, deletion, VkDeviceSize(width) * height * sizeof(uint32_t),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+// A sphere's radius in world space, rounded up: a ray starting inside goes
+// at most twice this far before it leaves (chapter 10); for an ellipsoid its
+// longest semi-axis. A quad has no inside: 0.
+float worldRadius(const Object& o) {
+    if (o.type != ShapeType::Sphere) return 0.0f;
+    return std::nextafter(float(largestStretch(o.transform)), INFINITY);
+}
+}  // namespace
+
+static_assert(uint32_t(Glass::Diamond) == GLASS_DIAMOND &&
+              uint32_t(Glass::BK7) == GLASS_BK7);
+
+std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
+    std::vector<gpu::GpuLight> lights;
+    for (const auto& l : scene.lights)
+        lights.push_back({v4(l.position, 1), v4(l.intensity)});
+    return lights;
+}
+
+gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
+                               const std::vector<uint32_t>& firstTexel) {
+    glm::uvec4 texture(0);
+    // chapter 12: where its texels are, its size, and how it wraps and filters
+    if (m.texture >= 0) {
+        const Texture& t = *scene.textures[m.texture];
+        auto wrap = [](TextureWrap w) {
+            return w == TextureWrap::Clamp    ? TEXTURE_WRAP_CLAMP
+                   : w == TextureWrap::Mirror ? TEXTURE_WRAP_MIRROR
+                                              : TEXTURE_WRAP_REPEAT;
+        };
+        texture = {firstTexel[m.texture], t.width, t.height,
+                   wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT |
+                       (t.nearest ? TEXTURE_NEAREST : 0u)};
+    }
+    return {v4(m.ka),
+            v4(m.kd),
+            v4(m.ks),
+            glm::vec4(float(m.shininess), float(m.reflectivity), float(m.transmission),
+                      float(m.ior)),
+            glm::vec4(float(m.f0), float(m.roughness), float(m.dispersion / 20),
+                      float(m.glass)),
+            texture,
+            glm::vec4(glm::vec3(m.absorption), float(m.priority))};
+}
+
+// The scene's buffers and structures against the device's limits, before
+// they are made: the largest storage buffers (objects, the sky's and the
+// textures' texels) and the instance and box counts of the acceleration
+// structures.
+void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky,
+                    size_t grouped, size_t instanced) {
+    std::string name;
+    double limit = storageBufferLimit(gpu, &name);
+    double textureBytes = 0;
+    for (const auto& t : scene.textures)
+        textureBytes += double(t->width) * t->height * sizeof(glm::vec4);
+    if (textureBytes > limit)
+        throw InputError(scene.path + ": the meshes' " +
+                         std::to_string(scene.textures.size()) + " textures need " +
+                         mebibytes(textureBytes) +
+                         " in one storage buffer, more than this device's " + name +
+                         " (" + mebibytes(limit) + ")");
+    double skyBytes = double(sky.rgba.size()) * sizeof(float);
+    if (skyBytes > limit) {
+        double texels = std::floor(limit / 16),
+               scale = std::sqrt(texels / (double(sky.width) * sky.height));
+        throw InputError(scene.path + ": sky.image: its " + std::to_string(sky.width) +
+                         "x" + std::to_string(sky.height) + " texels need " +
+                         mebibytes(skyBytes) +
+                         " in one storage buffer, more than this device's " + name +
+                         " (" + mebibytes(limit) + "); an image of at most " +
+                         std::to_string(uint32_t(sky.width * scale)) + "x" +
+                         std::to_string(uint32_t(sky.height * scale)) + " fits");
+    }
+    double objectBytes = double(scene.objects.size() + grouped) * sizeof(gpu::GpuObject);
+    if (objectBytes > limit)
+        throw InputError(scene.path +
+                         ": objects: " + std::to_string(scene.objects.size()) +
+                         " objects need " + mebibytes(objectBytes) +
+                         " in one storage buffer, more than this device's " + name +
+                         " (" + mebibytes(limit) + "); at most " +
+                         std::to_string(uint64_t(limit / (2 * sizeof(gpu::GpuObject)))) +
+                         " spheres fit");
+    const auto& as = gpu.physical.accelerationStructure;
+    for (const auto& mesh : scene.meshes)
+        if (mesh->indices.size() / 3 > as.maxPrimitiveCount)
+            throw InputError(scene.path + ": " + mesh->name + ": " +
+                             std::to_string(mesh->indices.size() / 3) +
+                             " triangles, more than this device's maxPrimitiveCount (" +
+                             std::to_string(as.maxPrimitiveCount) + ")");
+    if (instanced + 1 > as.maxInstanceCount)
+        throw InputError(scene.path + ": objects: " + std::to_string(instanced) +
+                         " instances, more than this device's maxInstanceCount (" +
+                         std::to_string(as.maxInstanceCount) + ")");
+    if (grouped > as.maxPrimitiveCount)
+        throw InputError(
+            scene.path + ": objects: " + std::to_string(grouped) +
+            " spheres in one group, more than this device's maxPrimitiveCount (" +
+            std::to_string(as.maxPrimitiveCount) + ")");
+}
+
+// [region layout]
+RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
+                    const Image& target, const SceneLayout& layout) {
+    RtScene rt;
+    rt.width = target.extent.width;
+    rt.height = target.extent.height;
+    rt.shapes =
+        buildUnitShapes(gpu, deletion, layout.sphereMeshLevel, &scene, layout.fileOrder);
+    // Chapter 03: which objects become boxes of the sphere group and which
+    // instances, each list in the order its structure is built from.
+    // a sphere mesh is instanced
+    bool grouping = layout.groupSpheres && layout.sphereMeshLevel == 0;
+    std::vector<uint32_t> grouped, instanced;
+    for (uint32_t i = 0; i < scene.objects.size(); ++i)
+        (grouping && inSphereGroup(scene.objects[i]) ? grouped : instanced).push_back(i);
+    if (!layout.fileOrder) {
+        grouped = medianSplitOrder(scene, std::move(grouped));
+        instanced = medianSplitOrder(scene, std::move(instanced));
+    }
+    SkyTexels sky = loadSky(scene);
+    checkSceneFits(gpu, scene, sky, grouped.size(), instanced.size());
+    // The group's entries go after the scene's own objects in the GPU's array.
+    rt.group =
+        buildSphereGroup(gpu, deletion, scene, grouped, uint32_t(scene.objects.size()));
+    rt.instances = makeInstances(scene, rt.shapes, instanced, &rt.group);
+    rt.tlas = buildTlas(gpu, deletion, rt.instances);
+// [end]
+
+    gpu::RtCamera camera{};
+    cameraMatrices(scene.camera, double(rt.width) / rt.height, camera.viewInverse,
+                   camera.projInverse);
+    camera.skyTop = v4(scene.sky.top);
+    camera.skyHorizon = v4(scene.sky.horizon);
+    camera.skyBottom = v4(scene.sky.bottom);
+    camera.ambient = v4(scene.ambient);
+    camera.counts = {sky.width, sky.height, uint32_t(scene.lights.size()),
+                     uint32_t(scene.objects.size())};
+    camera.eye = {float(scene.eyeTmin), float(scene.cameraMedium + 1), 0, 0};
+    rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera),
+                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+
+    std::vector<gpu::GpuObject> objects;
+    const glm::vec4 unitSphere(0, 0, 0, 1);  // in its instance's object space
+    for (const auto& o : scene.objects) {
+        bool sphereMesh = o.type == ShapeType::Sphere && rt.shapes.sphereMesh >= 0;
+        uint32_t shape = o.type == ShapeType::Sphere ? SHAPE_SPHERE
+                         : o.type == ShapeType::Quad ? SHAPE_QUAD
+                                                     : SHAPE_MESH;
+        objects.push_back({unitSphere, sphereMesh ? SHAPE_MESH : shape, o.material,
+                           worldRadius(o),
+                           sphereMesh ? uint32_t(rt.shapes.sphereMesh) : o.mesh});
+    }
+    // the group's boxes, in their order: the real spheres
+    for (uint32_t i : rt.group.objects)
+        objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE,
+                           scene.objects[i].material, worldRadius(scene.objects[i]), 0});
+    std::vector<glm::vec4> texels;  // chapter 12: every texture's, one after another
+    for (const auto& t : scene.textures) {
+        rt.firstTexel.push_back(uint32_t(texels.size()));
+        for (const glm::vec3& c : t->texels) texels.emplace_back(c, 1.0f);
+    }
+    std::vector<gpu::GpuMaterial> materials;
+    for (const auto& m : scene.materials)
+        materials.push_back(toGpuMaterial(m, scene, rt.firstTexel));
+    std::vector<gpu::GpuLight> lights = toGpuLights(scene);
+    rt.objects = storage(gpu, deletion, objects);
+    rt.materials = storage(gpu, deletion, materials);
+    rt.lights = storage(gpu, deletion, lights);
+    rt.sky = storage(gpu, deletion, sky.rgba);
+    rt.textures = storage(gpu, deletion, texels);
+    rt.rayCount = createRayCounts(gpu, deletion, rt.width, rt.height);
+    // [region mesh_table]
+    auto address = [](const Buffer& b) {
+        return glm::uvec2(uint32_t(b.address), uint32_t(b.address >> 32));
+    };
+    // chapter 12: one entry per mesh, its buffers by address
+    std::vector<gpu::GpuMesh> meshes;
+    for (const MeshBlas& m : rt.shapes.meshes)
+        meshes.push_back({address(m.vertices), address(m.normals), address(m.indices),
+                          address(m.texcoords)});
+    // without meshes, one unused entry: a binding needs a buffer
+    rt.meshes = storage(gpu, deletion, meshes);
+    // [end]
+
+    const VkShaderStageFlags rt_stages =
+        VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
+        VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
+    rt.descriptors = createDescriptorSet(
+        gpu, deletion,
+        {
+            {RT_BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR,
+             VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+            {RT_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+             VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+            {RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rt_stages},
+            {RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+            {RT_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+            {RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+            {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
+            {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+             VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+            {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+            {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+        });
+    // [region tlas_descriptor]
+    VkDescriptorSet set = rt.descriptors.set;
+    writeAccelerationStructure(gpu, set, RT_BINDING_TLAS, rt.tlas.as.handle);
+    // [end]
+    writeStorageImage(gpu, set, RT_BINDING_TARGET, target.view);
+    writeBuffer(gpu, set, RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                rt.camera);
+    writeBuffer(gpu, set, RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.objects);
+    writeBuffer(gpu, set, RT_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.materials);
+    writeBuffer(gpu, set, RT_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.lights);
+    writeBuffer(gpu, set, RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.sky);
+    writeBuffer(gpu, set, RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.rayCount);
+    writeBuffer(gpu, set, RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.meshes);
+    writeBuffer(gpu, set, RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                rt.textures);
+    return rt;
+}
+
+void resizeTarget(const Gpu& gpu, DeletionQueue& deletion, RtScene& rt, Image& target,
+                  VkExtent2D size) {
+    target = createImage2D(gpu, deletion, size.width, size.height, target.format,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    rt.width = size.width;
+    rt.height = size.height;
+    rt.rayCount = createRayCounts(gpu, deletion, size.width, size.height);
+    writeStorageImage(gpu, rt.descriptors.set, RT_BINDING_TARGET, target.view);
+    writeBuffer(gpu, rt.descriptors.set, RT_BINDING_RAY_COUNT,
+                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt.rayCount);
+}
+
+uint64_t countRays(const Gpu& gpu, const RtScene& scene) {
+    DeletionQueue local;
+    VkDeviceSize bytes = scene.rayCount.size;
+    Buffer host = createHostBuffer(gpu, local, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    submitOnce(gpu, [&](VkCommandBuffer cmd) {
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT);
+        VkBufferCopy region{.size = bytes};
+        vkCmdCopyBuffer(cmd, scene.rayCount.handle, host.handle, 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    });
+    const uint32_t* counts = static_cast<const uint32_t*>(host.mapped);
+    uint64_t total = 0;
+    for (size_t i = 0; i < bytes / sizeof(uint32_t); ++i) total += counts[i];
+    return total;
+}
+
+}  // namespace rg

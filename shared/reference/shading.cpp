@@ -1,0 +1,475 @@
+// The reference's shading (chapters 05-11, 13): Blinn-Phong, Fresnel, the
+// ray tree of reflection and refraction, media and wavelengths, and the
+// render over all cores.
+#include "reference/reference.h"
+
+#include "core/interrupt.h"
+
+#include "core/display.h"
+#include "core/progress.h"
+#include "reference/sampling.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdint>
+#include <cmath>
+#include <random>
+#include <thread>
+
+namespace rg {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+double referenceFresnel(int mode, double f0, double cosI, double n1, double n2) {
+    double sin2T = (n1 / n2) * (n1 / n2) * std::max(0.0, 1 - cosI * cosI);  // Snell
+    // total internal reflection
+    if (sin2T >= 1) return 1;
+    double cosT = std::sqrt(1 - sin2T);
+    if (mode == 2) {  // unpolarized: the mean of the s and p reflectances
+        double rs = (n1 * cosI - n2 * cosT) / (n1 * cosI + n2 * cosT);
+        double rp = (n2 * cosI - n1 * cosT) / (n2 * cosI + n1 * cosT);
+        return (rs * rs + rp * rp) / 2;
+    }
+    if (mode == 1) f0 = std::pow((n1 - n2) / (n1 + n2), 2);
+    // Schlick leaving a denser medium uses the transmitted angle
+    double c = n1 > n2 ? cosT : cosI;
+    return f0 + (1 - f0) * std::pow(1 - c, 5);
+}
+
+namespace {
+// How light divides where a ray meets material m (chapters 08-11), and the
+// indices on both sides; n faces the ray.
+struct Split {
+    double reflected = 0, refracted = 0, local = 1, n1 = 1, n2 = 1;
+    // the highlight's share: the opaque part's and a dielectric's F
+    double highlight = 1;
+};
+
+Split splitAt(const ReferenceSettings& settings, const Material& m, double n1, double n2,
+              double cosI) {
+    Split s;
+    s.n1 = n1;
+    s.n2 = n2;
+    s.reflected = m.reflectivity;
+    if (settings.stage >= ReferenceStage::Fresnel) {
+        double F = referenceFresnel(settings.fresnelMode, m.f0, cosI, s.n1, s.n2);
+        s.reflected = m.transmission * F + (1 - m.transmission) * m.reflectivity;
+        if (settings.stage >= ReferenceStage::Refraction)
+            s.refracted = m.transmission * (1 - F);
+        s.highlight = (1 - m.transmission) * (1 - m.reflectivity) + m.transmission * F;
+    }
+    s.local = 1 - s.reflected - s.refracted;
+    // chapter 08: the thesis's mix
+    if (settings.stage < ReferenceStage::Fresnel) s.highlight = s.local;
+    return s;
+}
+
+// Chapters 08-12: air outside every material.
+Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering,
+              double cosI) {
+    return entering ? splitAt(settings, m, 1.0, m.ior, cosI)
+                    : splitAt(settings, m, m.ior, 1.0, cosI);
+}
+
+// Chapter 13's media (written again from the rule on docs/13_real_glass.md,
+// not from media.glsl): the medium at a place is the stack's entry of
+// highest priority, of equal ones the last entered; -1 is air.
+int mediumOf(const Scene& scene, const MediumStack& media) {
+    int best = -1, bestPriority = -1;
+    for (size_t k = media.materials.size(); k-- > 0;) {
+        int priority = scene.materials[media.materials[k]].priority;
+        if (priority > bestPriority)
+            best = int(media.materials[k]), bestPriority = priority;
+    }
+    return best;
+}
+double mediumIor(const Scene& scene, int medium) {
+    return medium < 0 ? 1.0 : scene.materials[medium].ior;
+}
+glm::dvec3 mediumAbsorption(const Scene& scene, int medium) {
+    return medium < 0 ? glm::dvec3(0) : scene.materials[medium].absorption;
+}
+constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
+constexpr double kMinNm = 380, kMaxNm = 780;
+constexpr int kMaxPasses = 256;    // as the GPU's MAX_PASSES
+
+// Snell's law in vector form: t = eta d + (eta cos_i - cos_t) n, n facing
+// the ray; false under total internal reflection.
+bool refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2,
+                      glm::dvec3& t) {
+    double eta = n1 / n2, cosI = -glm::dot(n, d);
+    double k = 1 - eta * eta * (1 - cosI * cosI);
+    if (k < 0) return false;
+    t = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
+    return true;
+}
+
+glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n) {
+    return d - 2 * glm::dot(d, n) * n;
+}
+
+// Chapter 12's rules for a mesh's two normals (shaders/common/ray_tree.glsl):
+// a direction found with the shading normal ns that lands on the wrong
+// side of the flat triangle (normal n, facing the ray) is found with n.
+glm::dvec3 reflectSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns) {
+    glm::dvec3 r = reflectDirection(d, ns);
+    return glm::dot(r, n) > 0 ? r : reflectDirection(d, n);
+}
+bool refractSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns,
+                  double n1, double n2, glm::dvec3& t) {
+    if (refractDirection(d, ns, n1, n2, t) && glm::dot(t, n) < 0) return true;
+    return refractDirection(d, n, n1, n2, t);
+}
+
+// The normals of a hit facing the ray: geometric n, and the shading normal
+// turned with it, or n where it faces away (raygen_common.glsl's facingShading).
+void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dvec3& n,
+                   glm::dvec3& ns) {
+    bool front = glm::dot(hit.normal, direction) < 0;
+    n = front ? hit.normal : -hit.normal;
+    ns = front ? hit.shading : -hit.shading;
+    if (glm::dot(ns, direction) >= 0) ns = n;
+}
+}  // namespace
+
+// [region path_wavelength]
+double referencePathWavelength(uint32_t x, uint32_t y, uint32_t first, uint32_t k) {
+    // PCG (Jarzynski and Olano 2020), as sampling.glsl's pcgHash
+    auto hash = [](uint32_t v) {
+        uint32_t state = v * 747796405u + 2891336453u;
+        uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+        return (word >> 22u) ^ word;
+    };
+    uint32_t reversed = 0;  // k's bits mirrored: the radical inverse
+    for (int b = 0; b < 32; ++b) reversed |= ((k >> b) & 1u) << (31 - b);
+    uint32_t seed = hash(x + hash(y + hash(first)));
+    double u = double(reversed >> 8) / 16777216.0 + double(seed >> 8) / 16777216.0;
+    return kMinNm + (kMaxNm - kMinNm) * (u - std::floor(u));
+}
+// [end]
+
+// [region spectral_weight]
+glm::dvec3 referenceSpectralWeight(double nm) {
+    auto lobe = [](double x, double peak, double below, double above) {
+        double t = (x - peak) / (x < peak ? below : above);
+        return std::exp(-0.5 * t * t);
+    };
+    // CIE XYZ (Wyman, Sloan and Shirley 2013), then XYZ to linear sRGB
+    auto srgb = [&](double x) {
+        glm::dvec3 xyz(
+            1.056 * lobe(x, 599.8, 37.9, 31.0) + 0.362 * lobe(x, 442.0, 16.0, 26.7) -
+                0.065 * lobe(x, 501.1, 20.4, 26.2),
+            0.821 * lobe(x, 568.8, 46.9, 40.5) + 0.286 * lobe(x, 530.9, 16.3, 31.1),
+            1.217 * lobe(x, 437.0, 11.8, 36.0) + 0.681 * lobe(x, 459.0, 26.0, 13.8));
+        return glm::dvec3(3.2404542 * xyz.x - 1.5371385 * xyz.y - 0.4985314 * xyz.z,
+                          -0.9692660 * xyz.x + 1.8760108 * xyz.y + 0.0415560 * xyz.z,
+                          0.0556434 * xyz.x - 0.2040259 * xyz.y + 1.0572252 * xyz.z);
+    };
+    static const glm::dvec3 mean = [&] {  // over the range, by a fine midpoint rule
+        glm::dvec3 sum(0);
+        const int steps = 40000;
+        for (int k = 0; k < steps; ++k)
+            sum += srgb(kMinNm + (kMaxNm - kMinNm) * (k + 0.5) / steps);
+        return sum / double(steps);
+    }();
+    return srgb(nm) / mean;
+}
+// [end]
+
+glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings,
+                                           const Material& m, const glm::dvec3& p,
+                                           double error, const glm::dvec3& n,
+                                           const glm::dvec3& ns, const glm::dvec3& v,
+                                           double local, double highlight) const {
+    glm::dvec3 color = local * m.ka * scene_.ambient;  // 3.1
+    if (settings.stage == ReferenceStage::Ambient) return color;
+    glm::dvec3 from = secondaryOrigin(p, error, n);
+    for (const PointLight& light : scene_.lights) {  // 3.2 and 3.3
+        glm::dvec3 l = glm::normalize(light.position - p);
+        double ndotl = glm::dot(ns, l);
+        if (ndotl <= 0) continue;
+        glm::dvec3 added = local * light.intensity * m.kd * ndotl;
+        if (settings.stage != ReferenceStage::Diffuse) {
+            glm::dvec3 h = glm::normalize(l + v);
+            added += highlight * light.intensity * m.ks *
+                     std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
+            // As the GPU (shading.glsl's MIN_LIGHT): a light adding less than
+            // 1e-4 is left out, as a branch carrying less is not traced.
+            if (std::max({added.r, added.g, added.b}) < 1e-4) continue;
+        }
+        if (lightVisible(from, light.position)) color += added;
+    }
+    return color;
+}
+
+glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
+                                       const glm::dvec3& origin,
+                                       const glm::dvec3& direction, int depth,
+                                       const glm::dvec3& throughput) const {
+    int passes = 0;
+    return radiance(settings, origin, direction, depth, throughput, MediumStack{},
+                    passes);
+}
+
+glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
+                                       const glm::dvec3& origin,
+                                       const glm::dvec3& direction, int depth,
+                                       const glm::dvec3& throughput,
+                                       const MediumStack& media, int& passes) const {
+    // depth 0: a camera ray
+    ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);
+    bool nested = settings.stage == ReferenceStage::Media;
+    // Chapter 13: Beer-Lambert along the way, in the medium the ray is in.
+    int here = nested ? mediumOf(scene_, media) : -1;  // -1: air
+    glm::dvec3 kept(1), sigma = mediumAbsorption(scene_, here);
+    for (int c = 0; c < 3; ++c)
+        if (sigma[c] > 0) kept[c] = hit.t < 0 ? 0.0 : std::exp(-sigma[c] * hit.t);
+    if (hit.t < 0) return kept * sky(direction);
+    glm::dvec3 n, ns;  // toward the ray's origin: geometric, shading
+    facingNormals(hit, direction, n, ns);
+    if (settings.stage == ReferenceStage::Normals) return 0.5 * n + 0.5;
+    const Material m = hitMaterial(hit);  // a mesh's texture tints it (chapter 12)
+    glm::dvec3 p = origin + hit.t * direction;
+    glm::dvec3 v = -direction;
+    if (settings.stage <= ReferenceStage::Specular)
+        return localShading(settings, m, p, hit.error, n, n, v);
+
+    // How the light divides at this surface (chapters 08-10).
+    bool entering = hit.frontFace;
+    // air outside (chapter 10)
+    double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
+    const glm::dvec3 arriving = throughput * kept;
+    MediumStack beyond = media;  // chapter 13: the media of a ray that crosses here
+    if (nested && m.transmission > 0) {
+        uint32_t material = scene_.objects[hit.object].material;
+        int from = here;
+        if (entering) {
+            beyond.materials.push_back(material);
+            if (beyond.materials.size() > kMediaDepth)
+                beyond.materials.erase(beyond.materials.begin());
+        } else {
+            auto it =
+                std::find(beyond.materials.rbegin(), beyond.materials.rend(), material);
+            if (it != beyond.materials.rend())
+                beyond.materials.erase(std::next(it).base());
+            // leaving what it never entered: chapter 10's view
+            else from = int(material);
+        }
+        int to = mediumOf(scene_, beyond);
+        n1 = mediumIor(scene_, from), n2 = mediumIor(scene_, to);
+        auto dispersionOf = [&](int k) {
+            return k < 0 ? std::pair(Glass::None, 0.0)
+                         : std::pair(scene_.materials[k].glass,
+                                     scene_.materials[k].dispersion);
+        };
+        if (n1 == n2 && mediumAbsorption(scene_, from) == mediumAbsorption(scene_, to) &&
+            dispersionOf(from) == dispersionOf(to)) {  // no surface here
+            if (passes++ >= kMaxPasses) return glm::dvec3(0);
+            return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction,
+                                   depth, arriving, beyond, passes);
+        }
+        const auto none = std::pair(Glass::None, 0.0);
+        if (dispersionOf(from) != none || dispersionOf(to) != none) {
+            if (media.wavelength == 0) {
+                // The first dispersive surface of this path: from here on its light
+                // depends on the wavelength. The same ray again at each wavelength.
+                MediumStack at = media;
+                if (settings.wavelength >= kMinNm || !media.wavelengths) {
+                    at.wavelength =
+                        settings.wavelength >= kMinNm ? settings.wavelength : 587.5618;
+                    return radiance(settings, origin, direction, depth, throughput, at,
+                                    passes);
+                }
+                glm::dvec3 sum(0);
+                for (double nm : *media.wavelengths) {
+                    at.wavelength = nm;
+                    glm::dvec3 w = referenceSpectralWeight(nm);
+                    int passesAt = passes;
+                    sum += w * radiance(settings, origin, direction, depth,
+                                        throughput * w, at, passesAt);
+                }
+                return sum / double(media.wavelengths->size());
+            }
+            auto indexOf = [&](int k) {
+                return k < 0 ? 1.0 : indexAt(scene_.materials[k], media.wavelength);
+            };
+            n1 = indexOf(from), n2 = indexOf(to);
+        }
+    }
+    Split split = splitAt(settings, m, n1, n2, glm::dot(ns, v));
+    double reflected = split.reflected, refracted = split.refracted;
+    glm::dvec3 color(0);
+    if (split.highlight > 0)
+        color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
+                              split.highlight);
+    if (depth >= settings.maxDepth) return kept * color;
+    constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
+    auto strongEnough = [&](double w) {
+        glm::dvec3 t = arriving * w;
+        return settings.stage < ReferenceStage::Refraction ||
+               std::max({t.r, t.g, t.b}) >= kMinThroughput;
+    };
+    glm::dvec3 t;
+    if (refracted > 0 && strongEnough(refracted)) {
+        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+            color +=
+                refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
+                                     depth + 1, arriving * refracted, beyond, passes);
+        else
+            reflected += refracted;  // a mesh's flat triangle reflects it all
+    }
+    if (reflected > 0 && strongEnough(reflected)) {
+        glm::dvec3 r = reflectSides(direction, n, ns);
+        color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r,
+                                      depth + 1, arriving * reflected, media, passes);
+    }
+    return kept * color;
+}
+
+// [region reference_footprint]
+glm::dvec3 ReferenceRenderer::shade(const ReferenceSettings& settings, uint32_t x,
+                                    uint32_t y, uint32_t width, uint32_t height,
+                                    double* stdError) const {
+    if (!settings.antialias)
+        return shadeRay(settings, x, y, width, height, glm::dvec2(0.5), -1, stdError);
+    // --antialias: the mean over the points of the pixel the GPU's frames
+    // sampled (sampling.glsl's, compiled as C++), one camera ray each.
+    uint32_t frames = std::max(1u, settings.frames);
+    glm::dvec3 sum(0);
+    double errorSq = 0;
+    for (uint32_t k = 0; k < frames; ++k) {
+        glm::dvec2 offset(shader::pixelJitter(shader::uvec2(x, y), k));
+        double e = 0;
+        sum += shadeRay(settings, x, y, width, height, offset, int(k), &e);
+        errorSq += e * e;
+    }
+    // of a mean of independent estimates
+    if (stdError) *stdError = std::sqrt(errorSq) / frames;
+    return sum / double(frames);
+}
+// [end]
+
+glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32_t x,
+                                       uint32_t y, uint32_t width, uint32_t height,
+                                       glm::dvec2 offset, int frame,
+                                       double* stdError) const {
+    glm::dvec3 origin, direction;
+    cameraRay(x, y, width, height, origin, direction, offset);
+    if (stdError) *stdError = 0;
+    // chapter 13: the eye may be inside a medium
+    if (settings.stage == ReferenceStage::Media) {
+        MediumStack eye;
+        if (scene_.cameraMedium >= 0)
+            eye.materials.push_back(uint32_t(scene_.cameraMedium));
+        // the GPU's, frame after frame (one frame's: that frame's)
+        std::vector<double> wavelengths;
+        for (uint32_t k = 0; k < std::max(1u, settings.frames); ++k)
+            if (frame < 0 || int(k) == frame)
+                wavelengths.push_back(
+                    referencePathWavelength(x, y, settings.firstFrame, k));
+        eye.wavelengths = &wavelengths;
+        int passes = 0;
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes);
+    }
+    if (settings.stage != ReferenceStage::Rough)
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+
+    // Chapter 11: the first surface's mirror branch becomes the mean over a
+    // cone of directions. Same split and cone as the GPU; the integral is
+    // estimated with many stratified samples from this code's own generator.
+    ReferenceHit hit = trace(origin, direction, eyeTmin(), 1e300);
+    if (hit.t < 0) return sky(direction);
+    const Material m = hitMaterial(hit);  // a mesh's texture tints it (chapter 12)
+    glm::dvec3 n, ns;
+    facingNormals(hit, direction, n, ns);
+    if (m.roughness <= 0 || settings.maxDepth == 0)
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+    glm::dvec3 p = origin + hit.t * direction, v = -direction;
+    bool entering = hit.frontFace;
+    Split split = splitAt(settings, m, entering, glm::dot(ns, v));
+    double reflected = split.reflected, refracted = split.refracted;
+    glm::dvec3 color(0);
+    if (split.highlight > 0)
+        color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
+                              split.highlight);
+    if (refracted >= 1e-4) {
+        glm::dvec3 t;
+        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+            color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
+                                          1, glm::dvec3(refracted));
+        else
+            reflected += refracted;
+    }
+    if (reflected < 1e-4) return color;
+    glm::dvec3 mirror = reflectSides(direction, n, ns);
+    // A basis around the mirror direction, and the cone of half-angle roughness * pi/2.
+    glm::dvec3 helper =
+        std::abs(mirror.x) < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    glm::dvec3 t1 = glm::normalize(glm::cross(helper, mirror)),
+               t2 = glm::cross(mirror, t1);
+    double cosMax = std::cos(m.roughness * kPi / 2);
+    int side = std::max(1, int(std::lround(std::sqrt(double(settings.samples)))));
+    std::mt19937_64 rng(0x9E3779B97F4A7C15ull ^ (uint64_t(y) << 32 | x) ^
+                        (settings.seed * 0xD1B54A32D192ED03ull) ^
+                        // each antialiased ray its own
+                        (uint64_t(frame + 1) * 0x8CB92BA72F3D8DD7ull));
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    glm::dvec3 from = secondaryOrigin(p, hit.error, n), sum(0), sumSq(0);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            double u1 = (i + uniform(rng)) / side, u2 = (j + uniform(rng)) / side;
+            double cosTheta = 1 - u1 * (1 - cosMax),
+                   sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+            glm::dvec3 d = glm::normalize(sinTheta * std::cos(2 * kPi * u2) * t1 +
+                                          sinTheta * std::sin(2 * kPi * u2) * t2 +
+                                          cosTheta * mirror);
+            glm::dvec3 value(0);  // below the surface: absorbed
+            if (glm::dot(d, n) > 0)
+                value = radiance(settings, from, d, 1, glm::dvec3(reflected));
+            sum += value;
+            sumSq += value * value;
+        }
+    double count = double(side) * side;
+    glm::dvec3 mean = sum / count,
+               variance = (sumSq / count - mean * mean) * (count / (count - 1));
+    if (stdError)  // of independent samples: stratification makes the true error smaller
+        *stdError =
+            reflected *
+            std::sqrt(std::max(0.0, (variance.r + variance.g + variance.b) / 3) / count);
+    return color + reflected * mean;
+}
+
+FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t width,
+                                     uint32_t height) const {
+    FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> workers;
+    std::atomic<uint32_t> rowsDone{0};
+    for (unsigned t = 0; t < threads; ++t)
+        workers.emplace_back([&, t] {
+            for (uint32_t y = t; y < height; y += threads, ++rowsDone)
+                // Ctrl-C: the rest stays unset
+                for (uint32_t x = 0; x < width && !interrupted(); ++x) {
+                    double stdError = 0;
+                    glm::dvec3 c = shade(settings, x, y, width, height, &stdError) *
+                                   settings.exposure;
+                    float* p = &image.rgba[4 * (size_t(y) * width + x)];
+                    p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
+                    if (settings.stage == ReferenceStage::Rough)
+                        p[3] = float(stdError * settings.exposure);
+                }
+        });
+    Progress progress("CPU reference", height);  // on a terminal only
+    while (rowsDone.load() < height) {
+        progress.update(rowsDone.load());
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    for (auto& w : workers) w.join();
+    return image;
+}
+
+}  // namespace rg

@@ -1,0 +1,91 @@
+// Mesh files (chapter 12): the reader each file's extension picks, and the
+// images their materials name, decoded once to linear light.
+#include "scene/mesh_file.h"
+
+#include "scene/mesh_readers.h"
+
+#include "core/display.h"
+#include "core/files.h"
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <tuple>
+
+namespace rg {
+
+namespace {
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    throw InputError(path + ": " + what);
+}
+}  // namespace
+
+namespace {
+std::string lowerExtension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+}  // namespace
+
+// [region decode_texture]
+// Base colour textures are sRGB-encoded (glTF 2.0, 3.9.2): decoded here to
+// linear values once, so that filtering and shading work in linear light.
+Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width,
+                      int height) {
+    Texture t{.name = name, .width = uint32_t(width), .height = uint32_t(height)};
+    t.texels.resize(size_t(width) * height);
+    for (size_t i = 0; i < t.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            t.texels[i][c] = float(srgbToLinear(rgba[4 * i + c] / 255.0));
+    return t;
+}
+// [end]
+
+std::string decodeImage(const unsigned char* bytes, int size, int& width, int& height,
+                        std::vector<unsigned char>& rgba) {
+    int channels = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
+        return stbi_failure_reason() ? stbi_failure_reason()
+                                     : "not an image stb_image reads";
+    if (width > kMaxTextureSide || height > kMaxTextureSide)
+        return std::to_string(width) + "x" + std::to_string(height) +
+               " texels, more than " + std::to_string(kMaxTextureSide) + " a side";
+    unsigned char* data =
+        stbi_load_from_memory(bytes, size, &width, &height, &channels, 4);
+    if (!data) return stbi_failure_reason() ? stbi_failure_reason() : "a truncated image";
+    rgba.assign(data, data + size_t(width) * height * 4);
+    stbi_image_free(data);
+    return "";
+}
+
+std::vector<unsigned char> readImageFile(const std::string& meshPath,
+                                         const std::string& image) {
+    // missing, a folder, a FIFO: each its own reason
+    requireRegularFile(image, meshPath + ": map_Kd");
+    std::ifstream in(image, std::ios::binary);
+    if (!in) fail(meshPath, "cannot read the image " + image);
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+}
+
+// [region load_mesh_file]
+MeshFile loadMeshFile(const std::string& path) {
+    requireRegularFile(path, "mesh file");
+    std::string extension = lowerExtension(path);
+    if (extension == ".obj") return loadObj(path);
+    if (extension == ".gltf" || extension == ".glb")
+        return loadGltf(path, extension == ".glb");
+    fail(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
+}
+// [end]
+
+}  // namespace rg

@@ -1,0 +1,56 @@
+// Mesh files (chapter 12): glTF 2.0 (.gltf, .glb) through tinygltf and
+// Wavefront OBJ (.obj, with its .mtl) through tinyobjloader, both Debian's.
+// A file becomes checked meshes (mesh.h), the materials it names, and parts:
+// one placed mesh each (a glTF node's mesh primitive, an OBJ's faces of one
+// material). The scene format (mesh_objects.h) maps the materials onto RayGlass's.
+#pragma once
+#include "scene/mesh.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rg {
+
+// A material as a glTF file describes it (an OBJ's .mtl is translated to
+// the same terms): metallic-roughness with its base colour texture, plus
+// KHR_materials_transmission and KHR_materials_ior.
+struct FileMaterial {
+    std::string name;
+    glm::dvec3 baseColor{1.0};  // linear
+    double metallic = 1, roughness = 1;  // glTF's defaults
+    double transmission = 0;    // KHR_materials_transmission
+    double ior = 1.5;           // KHR_materials_ior
+    // KHR_materials_volume (chapter 13): the colour white light
+    glm::dvec3 attenuationColor{1.0};
+    // keeps after this distance in the scene's units; 0: no absorption
+    double attenuationDistance = 0;
+    // KHR_materials_dispersion (chapter 13): 20 / Abbe number, 0: none
+    double dispersion = 0;
+    // index into MeshFile::textures (times baseColor), -1: none
+    int baseColorTexture = -1;
+};
+
+struct MeshPart {
+    uint32_t mesh = 0;        // index into MeshFile::meshes
+    int material = -1;        // index into MeshFile::materials, -1: the file gives none
+    glm::dmat4 transform{1};  // the file's own placement (glTF node hierarchy)
+};
+
+struct MeshFile {
+    // each checked (checkMesh); one per glTF primitive, however often placed
+    std::vector<Mesh> meshes;
+    std::vector<FileMaterial> materials;
+    std::vector<Texture> textures;  // the base colour textures the materials use, decoded
+    std::vector<MeshPart> parts;
+    size_t skippedPrimitives = 0;  // points and lines: not surfaces
+};
+
+// Throws InputError "<path>: <why>" for a file that is missing, not one of
+// the formats, malformed (accessors outside their buffers, sparse or
+// quantized positions), naming an image stb_image cannot decode, or holding
+// a mesh checkMesh refuses.
+MeshFile loadMeshFile(const std::string& path);
+
+}  // namespace rg

@@ -1,0 +1,133 @@
+// Mesh objects in a scene file (chapter 12), inside scene/ only: a glTF or
+// OBJ file's materials in RayGlass's terms, and each file read once however
+// often the scene places it.
+#pragma once
+#include "scene/mesh_file.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+namespace rg {
+
+// [region mesh_material]
+// A glTF material in RayGlass's terms (docs/scene-format.md): the base
+// colour is diffuse where the surface is neither metal nor glass; metal is
+// an untinted mirror of that strength; the highlight narrows as the
+// roughness falls (Blinn-Phong's exponent 2 / alpha^2 - 2 for GGX's alpha =
+// roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2. A base
+// colour texture multiplies ka and kd where a ray meets the mesh (its
+// caller sets Material::texture).
+inline Material materialFromFile(const FileMaterial& f) {
+    Material m;  // named by the caller, after the file
+    double dielectric = (1 - f.metallic) * (1 - f.transmission);
+    m.kd = f.baseColor * dielectric;
+    m.ka = m.kd;
+    double alpha = std::max(f.roughness * f.roughness, 1e-3);
+    m.shininess = std::min(1e6, std::max(1.0, 2 / (alpha * alpha) - 2));
+    m.ks = glm::dvec3(0.04 * (1 - f.roughness));
+    m.reflectivity = f.metallic * (1 - f.transmission);
+    m.transmission = f.transmission;
+    m.ior = f.ior;
+    m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
+    // rough reflection only for metal (ch 11)
+    m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;
+    // ch 13
+    if (f.attenuationDistance > 0)
+        m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);
+    m.dispersion = f.dispersion;  // ch 13
+    return m;
+}
+// [end]
+
+// Mesh objects (chapter 12): each file is read once, its meshes go into
+// Scene::meshes once, and every placement adds one object per part.
+class MeshFiles {
+public:
+    MeshFiles(const Reader& r, const std::string& scenePath, Scene& scene)
+        : r_(r), path_(scenePath), scene_(scene) {}
+
+    void place(const std::string& name, const std::string& key,
+               const glm::dmat4& transform, bool moving,
+               std::optional<uint32_t> material) {
+        std::string file = findInput(r_, path_, name, key + ".file");
+        auto it = loaded_.find(file);
+        if (it == loaded_.end()) it = loaded_.emplace(file, load(file, key)).first;
+        const Loaded& l = it->second;
+        for (const MeshPart& part : l.parts) {
+            if (!material && part.material < 0)
+                r_.fail(key + ".material",
+                        "missing: " + name + " names no material for its mesh");
+            Object o{.type = ShapeType::Mesh,
+                     .material = material ? *material : l.materials[part.material],
+                     .moving = moving,
+                     .transform = transform * part.transform,
+                     .mesh = l.firstMesh + part.mesh};
+            const Mesh& mesh = *scene_.meshes[o.mesh];
+            bool open =
+                scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0;
+            // once per mesh, however often it is placed
+            if (open && warnedOpen_.insert(o.mesh).second)
+                std::fprintf(
+                    stderr,
+                    "%s: %s: warning: %s is transmissive but not closed: %zu open edges "
+                    "(glass needs a closed surface)\n",
+                    path_.c_str(), key.c_str(), mesh.name.c_str(), mesh.openEdges);
+            scene_.objects.push_back(o);
+        }
+    }
+
+private:
+    struct Loaded {
+        uint32_t firstMesh = 0;
+        std::vector<uint32_t> materials;  // the file's materials in the scene's list
+        std::vector<MeshPart> parts;
+    };
+    Loaded load(const std::string& file, const std::string& key) {
+        MeshFile mf;
+        try {
+            mf = loadMeshFile(file);
+        } catch (const InputError& e) {
+            throw InputError(path_ + ": " + key + ".file: " + e.what());
+        }
+        Loaded l{.firstMesh = uint32_t(scene_.meshes.size()), .parts = mf.parts};
+        int firstTexture = int(scene_.textures.size());
+        for (Texture& t : mf.textures)
+            scene_.textures.push_back(std::make_shared<const Texture>(std::move(t)));
+        for (const FileMaterial& f : mf.materials) {
+            l.materials.push_back(uint32_t(scene_.materials.size()));
+            scene_.materials.push_back(materialFromFile(f));
+            scene_.materials.back().name =
+                std::filesystem::path(file).filename().string() + ": " + f.name;
+            if (f.baseColorTexture >= 0)
+                scene_.materials.back().texture = firstTexture + f.baseColorTexture;
+        }
+        for (Mesh& m : mf.meshes) {
+            if (m.degenerate > 0)
+                std::fprintf(stderr, "%s: %s: dropped %zu degenerate triangles\n",
+                             path_.c_str(), m.name.c_str(), m.degenerate);
+            scene_.meshes.push_back(std::make_shared<const Mesh>(std::move(m)));
+        }
+        if (mf.skippedPrimitives > 0)
+            std::fprintf(stderr,
+                         "%s: %s: skipped %zu primitives that are points or lines\n",
+                         path_.c_str(), file.c_str(), mf.skippedPrimitives);
+        return l;
+    }
+    const Reader& r_;
+    const std::string& path_;
+    Scene& scene_;
+    std::map<std::string, Loaded> loaded_;
+    std::set<uint32_t> warnedOpen_;
+};
+
+}  // namespace rg

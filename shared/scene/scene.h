@@ -1,0 +1,163 @@
+// Scenes are data (chapter 03): a JSON file with the camera, the sky, the
+// lights, the materials and the objects. docs/scene-format.md documents every
+// key. Everything is double precision here; the GPU gets floats from it and
+// the CPU reference renderer uses it as it is.
+#pragma once
+#include "scene/mesh.h"
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rg {
+
+struct Camera {
+    glm::dvec3 position{0, 1, 5};
+    glm::dvec3 lookAt{0, 1, 0};
+    glm::dvec3 up{0, 1, 0};
+    double fovYDeg = 45.0;  // vertical field of view
+};
+
+struct Sky {
+    std::string image;  // equirectangular image, sRGB (empty: the gradient below)
+    // linear
+    glm::dvec3 top{0.25, 0.45, 0.85}, horizon{0.8, 0.85, 0.9}, bottom{0.2, 0.18, 0.15};
+};
+
+struct PointLight {
+    glm::dvec3 position{0, 5, 0};
+    glm::dvec3 intensity{1, 1, 1};  // linear radiance scale I_i
+};
+
+// Chapter 13: the glasses with a measured dispersion (host_device.h's GLASS_*).
+enum class Glass { None, BK7, FusedSilica, Water, Diamond };
+
+// Every parameter of chapters 05-11; each chapter reads what it needs.
+struct Material {
+    std::string name;
+    // ambient coefficient (ch 05), times the scene's ambient light
+    glm::dvec3 ka{1, 1, 1};
+    // diffuse (ch 06); chapter 04 shows it as the flat colour
+    glm::dvec3 kd{0.7, 0.7, 0.7};
+    glm::dvec3 ks{0, 0, 0};        // specular (ch 07)
+    double shininess = 32;         // Blinn-Phong exponent (ch 07)
+    double reflectivity = 0;       // mirror fraction (ch 08)
+    double transmission = 0;       // 1: a dielectric that refracts (ch 10)
+    double ior = 1.517;            // index of refraction (ch 09-10)
+    double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
+    double roughness = 0;          // lobe width for rough reflection (ch 11)
+    // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
+    int texture = -1;
+    // Chapter 13, for a material that transmits: the medium inside it.
+    // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
+    glm::dvec3 absorption{0};
+    // where media overlap, the one of highest priority fills the space
+    int priority = 0;
+    // Its dispersion: a named glass (Sellmeier), else glTF's 20 / Abbe number (0: none).
+    Glass glass = Glass::None;
+    double dispersion = 0;
+};
+
+enum class ShapeType { Sphere, Quad, Mesh };
+
+// Every object becomes one instance of a unit shape (a sphere of radius 1 at
+// the origin, or the quad [-1,1] x {0} x [-1,1]) or of a mesh (chapter 12)
+// with a world transform.
+struct Object {
+    ShapeType type = ShapeType::Sphere;
+    uint32_t material = 0;
+    // chapter 03 moves it every frame by its TLAS transform alone
+    bool moving = false;
+    glm::dmat4 transform{1.0};  // object -> world
+    // the same shape and transform as an earlier object: that one is drawn
+    bool hidden = false;
+    // As written in the file (the reference renderer intersects these directly):
+    glm::dvec3 center{0};
+    double radius = 1;       // spheres
+    glm::dvec3 u{1, 0, 0}, v{0, 0, 1};  // quads: half-edges, the quad is center +- u +- v
+    uint32_t mesh = 0;       // meshes: index into Scene::meshes
+};
+
+struct Scene {
+    std::string path;
+    Camera camera;
+    Sky sky;
+    glm::dvec3 ambient{0.1, 0.1, 0.1};  // I_a (ch 05)
+    std::vector<PointLight> lights;
+    std::vector<Material> materials;
+    std::vector<Object> objects;
+    // Chapter 12: each mesh once, however many objects place it (one BLAS each).
+    std::vector<std::shared_ptr<const Mesh>> meshes;
+    // the meshes' base colour textures
+    std::vector<std::shared_ptr<const Texture>> textures;
+    // Camera rays ignore hits closer to the eye than this: 0 unless the eye
+    // lies on a surface (eyeTmin in rules.cpp; docs/scene-format.md's rule 1).
+    double eyeTmin = 0;
+    // chapter 13: the material whose medium the eye is in (camera.medium), -1: air
+    int cameraMedium = -1;
+    // where the file's origin lies in this scene's space (toCameraSpace): file = p -
+    // origin
+    glm::dvec3 origin{0};
+};
+
+// The longest column of a transform's 3x3 part: the largest stretch it
+// applies (the format's transforms are rotations times scales, whose columns
+// are orthogonal), an ellipsoid's longest semi-axis.
+double largestStretch(const glm::dmat4& transform);
+// The shortest such column: an ellipsoid's shortest semi-axis.
+double smallestStretch(const glm::dmat4& transform);
+
+// Chapter 13: the Beer-Lambert coefficient of a medium in which white light
+// keeps `color` after `distance` (glTF's KHR_materials_volume): -ln(color) / distance.
+glm::dvec3 absorptionOf(const glm::dvec3& color, double distance);
+
+// Chapter 13: a material's index of refraction at a wavelength (nm): a
+// named glass's Sellmeier equation, or glTF's KHR_materials_dispersion line
+// n = max(n_d + (n_d - 1) / V (523655 / L^2 - 1.5168), 1) through its ior
+// at 587.6 nm; the ior itself without dispersion.
+double indexAt(const Material& m, double nm);
+double glassIndex(Glass glass, double nm);
+
+// Rule 1 of docs/scene-format.md: how far from the eye camera rays start
+// (Scene::eyeTmin; 0 unless the eye lies on a surface). loadScene sets it.
+double eyeTmin(const Scene& scene);
+
+// The sky as linear RGBA floats (an image file decoded from sRGB, or none).
+struct SkyTexels {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;
+};
+SkyTexels loadSky(const Scene& scene);
+
+// Reads and checks a scene file. Throws rg::InputError (exit code 2) naming
+// the file and the key for a missing file, bad JSON, an unknown key, a
+// missing value or one out of range.
+Scene loadScene(const std::string& path);
+
+// Chapters before 12 draw spheres and quads only: throws InputError naming
+// the first mesh object and chapter 12.
+void refuseMeshes(const Scene& scene);
+
+// Chapter 13's medium stack holds material indices in 8 bits (media.glsl):
+// throws InputError naming the first transmitting material past index 254.
+void refuseUnstackableMedia(const Scene& scene);
+
+// The rendering space of the ray tracing chapters (04 on), as PBRT-v4 does:
+// the whole scene translated, in double precision, so that the camera sits
+// at the origin. Floats are densest near 0, so what the camera sees close up
+// keeps the precision it would have at the world's origin, wherever the
+// scene is (a float's spacing is 0.008 at 1e5). Returns the moved scene;
+// `origin` says where it was.
+Scene toCameraSpace(Scene scene);
+
+// A camera as a scene file's "camera" object, in the file's coordinates
+// (`origin`: Scene::origin of the space the camera is in).
+nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin);
+
+// The chapter's default scene: bin/assets/scenes/<name>.json.
+std::string defaultScenePath(const std::string& name);
+
+}  // namespace rg
