@@ -110,10 +110,11 @@ struct RtCamera {
     vec4 skyBottom;
     vec4 ambient;      // I_a (chapter 05)
     uvec4 counts;      // sky width, sky height (0: gradient), light count, object count
-    // x: camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface);
-    vec4 eye;
-    // y: the medium the eye is in (chapter 13): material index + 1, 0 for air; z, w
-    // unused
+    // camera rays' tMin (Scene::eyeTmin, 0 unless the eye lies on a surface)
+    float eyeTmin;
+    // the medium the eye is in (chapter 13): its material index + 1, 0 for air
+    uint eyeMedium;
+    uint unused0, unused1;  // the struct's size stays a multiple of 16 bytes
 };
 RG_SIZE(RtCamera, 224);
 

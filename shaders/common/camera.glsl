@@ -10,7 +10,7 @@
 // outside above its tangent plane, the inside below (the rule and its value
 // are in docs/scene-format.md and Scene::eyeTmin; the CPU reference follows
 // it).
-float eyeTmin() { return camera.eye.x; }
+float eyeTmin() { return camera.eyeTmin; }
 // [end]
 
 // [region camera_ray]

@@ -236,7 +236,8 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     camera.ambient = v4(scene.ambient);
     camera.counts = {sky.width, sky.height, uint32_t(scene.lights.size()),
                      uint32_t(scene.objects.size())};
-    camera.eye = {float(scene.eyeTmin), float(scene.cameraMedium + 1), 0, 0};
+    camera.eyeTmin = float(scene.eyeTmin);
+    camera.eyeMedium = uint32_t(scene.cameraMedium + 1);
     rt.camera = createDeviceBuffer(gpu, deletion, &camera, sizeof(camera),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
