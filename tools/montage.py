@@ -1,52 +1,52 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Puts chapter renders side by side into one PNG for the docs.
 
 Reads the PFM files the chapters write beside their PNGs (linear float RGB),
 applies RayGlass's one display transform (shared/core/display.h: clamp to [0, 1],
-then sRGB) and writes an 8-bit PNG, with a gap between the panels. Python's
-standard library only.
+then sRGB) and writes an 8-bit PNG, with a gap between the panels (numpy and
+PIL: Debian's python3-numpy and python3-pil).
 
     tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N]
 
 --scale N draws each pixel as an N x N square, so that single pixels (a
 staircase at an edge, chapter 04's antialiasing) can be seen.
 """
-import math
-import struct
 import sys
-import zlib
+
+import numpy as np
+from PIL import Image
+
+
+def fail(message):
+    print(f"montage.py: {message}", file=sys.stderr)
+    sys.exit(2)
 
 
 def read_pfm(path):
-    with open(path, "rb") as f:
-        data = f.read()
+    """A colour PFM file as linear RGB floats, top row first (PFM stores the bottom row first)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        fail(f"{path}: {e.strerror}")
     parts = data.split(b"\n", 3)
-    if len(parts) < 4 or parts[0] != b"PF":
-        raise SystemExit(f"montage.py: {path}: not a colour PFM file")
-    width, height = map(int, parts[1].split())
-    scale = float(parts[2])
-    fmt = "<" if scale < 0 else ">"
-    floats = struct.unpack(f"{fmt}{width * height * 3}f", parts[3][: width * height * 12])
-    rows = [floats[(height - 1 - y) * width * 3:(height - y) * width * 3] for y in range(height)]  # PFM is bottom-up
-    return width, height, rows
+    try:
+        if len(parts) < 4 or parts[0] != b"PF":
+            raise ValueError
+        width, height = map(int, parts[1].split())
+        dtype = "<f4" if float(parts[2]) < 0 else ">f4"  # a negative scale: little endian
+        floats = np.frombuffer(parts[3], dtype=dtype, count=width * height * 3)
+    except ValueError:
+        fail(f"{path}: not a colour PFM file, or a truncated one")
+    return floats.reshape(height, width, 3)[::-1]
 
 
 def to_display8(linear):
-    if linear != linear:  # NaN: black, as shared/core/display.h
-        return 0
-    c = min(1.0, max(0.0, linear))
-    s = 12.92 * c if c <= 0.0031308 else 1.055 * math.pow(c, 1 / 2.4) - 0.055
-    return int(math.floor(s * 255.0 + 0.5))
-
-
-def write_png(path, width, height, rows):
-    raw = b"".join(b"\x00" + bytes(r) for r in rows)
-    def chunk(kind, body):
-        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
-    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
-    png += chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
-    with open(path, "wb") as f:
-        f.write(png)
+    """RayGlass's one display transform (shared/core/display.h): NaN is
+    black; clamp to [0, 1], then the sRGB transfer function, rounded."""
+    c = np.clip(np.nan_to_num(linear.astype(np.float64), nan=0.0), 0.0, 1.0)
+    s = np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+    return np.floor(s * 255.0 + 0.5).astype(np.uint8)
 
 
 def main(argv):
@@ -70,17 +70,16 @@ def main(argv):
         return 2
     out, inputs = args[0], [read_pfm(p) for p in args[1:]]
     if scale > 1:  # each pixel an N x N square
-        inputs = [(w * scale, h * scale, [tuple(v for x in range(w) for v in row[3 * x:3 * x + 3] * scale)
-                                          for row in image for _ in range(scale)]) for w, h, image in inputs]
-    height = max(h for _, h, _ in inputs)
-    width = sum(w for w, _, _ in inputs) + gap * (len(inputs) - 1)
-    rows = [[255] * (3 * width) for _ in range(height)]  # white gaps
+        inputs = [image.repeat(scale, axis=0).repeat(scale, axis=1) for image in inputs]
+    height = max(image.shape[0] for image in inputs)
+    width = sum(image.shape[1] for image in inputs) + gap * (len(inputs) - 1)
+    canvas = np.full((height, width, 3), 255, dtype=np.uint8)  # white gaps
     x0 = 0
-    for w, h, image in inputs:
-        for y in range(h):
-            rows[y][3 * x0:3 * (x0 + w)] = [to_display8(v) for v in image[y]]
+    for image in inputs:
+        h, w = image.shape[:2]
+        canvas[:h, x0:x0 + w] = to_display8(image)
         x0 += w + gap
-    write_png(out, width, height, rows)
+    Image.fromarray(canvas, "RGB").save(out, optimize=True)
     return 0
 
 
