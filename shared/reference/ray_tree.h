@@ -1,0 +1,48 @@
+// The rules the reference's ray tree follows at each hit (inside reference/
+// only; media.cpp defines them, shading.cpp follows them), written again in
+// double from the pages' rules, not from the GPU's shaders.
+#pragma once
+#include "reference/reference.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+
+namespace rg::ref {
+
+constexpr size_t kMediaDepth = 4;  // as the GPU's MEDIA_DEPTH
+constexpr double kMinNm = 380, kMaxNm = 780;
+constexpr int kMaxPasses = 256;    // as the GPU's MAX_PASSES
+
+// How light divides where a ray meets material m (chapters 08-11), and the
+// indices on both sides; n faces the ray.
+struct Split {
+    double reflected = 0, refracted = 0, local = 1, n1 = 1, n2 = 1;
+    // the highlight's share: the opaque part's and a dielectric's F
+    double highlight = 1;
+};
+
+Split splitAt(const ReferenceSettings& settings, const Material& m, double n1, double n2,
+              double cosI);
+// Chapters 08-12: air outside every material.
+Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering,
+              double cosI);
+
+// Chapter 13: the medium at a place (-1: air), its index and its absorption.
+int mediumOf(const Scene& scene, const MediumStack& media);
+double mediumIor(const Scene& scene, int medium);
+glm::dvec3 mediumAbsorption(const Scene& scene, int medium);
+
+// Snell's law in vector form; false under total internal reflection.
+bool refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2,
+                      glm::dvec3& t);
+glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n);
+// Chapter 12: with a mesh's two normals (geometric n, shading ns).
+glm::dvec3 reflectSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns);
+bool refractSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns,
+                  double n1, double n2, glm::dvec3& t);
+// The normals of a hit facing the ray.
+void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dvec3& n,
+                   glm::dvec3& ns);
+
+}  // namespace rg::ref
