@@ -158,6 +158,11 @@ TEST(SceneRules, CarefulNumericsWhereTheGeometryNeedsThem) {
     EXPECT_FALSE(ruleFor("tiny_1e-6", small + R"(1e-6, "material": "m"})").sizes);
     EXPECT_TRUE(ruleFor("tiny_1e-9", small + R"(1e-9, "material": "m"})").sizes);
     EXPECT_TRUE(ruleFor("quad_1e9", R"({"type": "quad", "u": [1e9, 0, 0], "v": [0, 0, 1e9], "material": "m"})").sizes);
+    // an ellipsoid 64 times longer than it is thin (its hits are refined, sphere.rint)
+    std::string plate = R"({"type": "sphere", "radius": 1, "material": "m", "transform": {"translate": [0, 0, -5], )";
+    EXPECT_FALSE(ruleFor("plate_1_64", plate + R"("scale": [1, 1, 0.0157]}})").sizes);
+    EXPECT_TRUE(ruleFor("plate_1_65", plate + R"("scale": [1, 1, 0.0153]}})").sizes);
+    EXPECT_TRUE(ruleFor("rod_1e3", plate + R"("scale": [1e-3, 1, 1e-3], "rotate_deg": [30, 40, 0]}})").sizes);
     // the shininess alone
     std::string ball = small + R"(1, "material": "m"})";
     EXPECT_FALSE(ruleFor("shininess_9999", ball, R"({"shininess": 9999})").shininess);
@@ -172,6 +177,7 @@ TEST(SceneRules, CarefulNumericsWhereTheGeometryNeedsThem) {
     EXPECT_TRUE(rule("sky_dome_1e20.json").sizes);
     EXPECT_TRUE(rule("eye_on_sphere.json").sizes);  // the eye on a surface: no distance to it
     EXPECT_TRUE(rule("shininess_1e6.json").shininess);
+    EXPECT_TRUE(rule("thin_plates_1e-3.json").sizes);
     rg::CarefulNumerics far = rule("far_1e6.json");
     EXPECT_FALSE(far.sizes || far.shininess);
 }

@@ -18,14 +18,29 @@ void main() {
     // Normals transform with the inverse transpose: n * M^-1 = (M^-T) n.
     payload.normal = normalize(objectNormal * mat3(gl_WorldToObjectEXT));
     payload.t = gl_HitTEXT;
-    // The hit point from the ray (not as centre + radius * normal, whose
-    // error grows with the centre's distance: a floor of radius 1e5).
-    vec3 local = gl_ObjectRayOriginEXT + gl_HitTEXT * gl_ObjectRayDirectionEXT;
+    vec3 local, magnitude;
+    if (s == vec4(0.0, 0.0, 0.0, 1.0)) {
+        // An instance of the unit sphere: the point the intersection shader
+        // found (refined where the origin is far: a squashed sphere), moved
+        // back onto the sphere along its radius (PBRT-v4 6.8.5). Its error is
+        // then that of its own coordinates, axis by axis, however inexactly t
+        // was found (a far root, a ray from inside): a sphere squashed to a
+        // plate has small numbers along its thin axis, and its bound along
+        // the normal stays within its thickness (docs/06_diffuse.md).
+        local = normalize(objectNormal);
+        magnitude = abs(local);
+    } else {
+        // A sphere of a group (chapter 03), in world space: the point from
+        // the ray, not as centre + radius * normal, whose error grows with
+        // the centre's distance (a floor of radius 1e5). A group's spheres
+        // are round: the largest number in every axis bounds it.
+        vec3 o = gl_ObjectRayOriginEXT, d = gl_ObjectRayDirectionEXT;
+        local = o + gl_HitTEXT * d;
+        magnitude = rayPointMagnitude(o, d, gl_HitTEXT);
+        // the far root: from inside
+        if (gl_HitKindEXT == 1u) magnitude += abs(o - s.xyz) + s.w;
+    }
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
-    vec3 magnitude =
-        rayPointMagnitude(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_HitTEXT);
-    // the far root: from inside
-    if (gl_HitKindEXT == 1u) magnitude += abs(gl_ObjectRayOriginEXT - s.xyz) + s.w;
     payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.object = index;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;

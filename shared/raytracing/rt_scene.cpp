@@ -23,6 +23,10 @@ CarefulNumerics needsCarefulNumerics(const Scene& scene) {
     CarefulNumerics careful{.sizes = false, .shininess = false};
     for (const Material& m : scene.materials)
         careful.shininess = careful.shininess || m.shininess >= 1e4;
+    // an ellipsoid's longest semi-axis over its shortest: past this, o + t d
+    // in its object space loses the digits of its thin axis (sphere.rint)
+    const double kSquash = 64.0;
+    bool squashed = false;
     double extent = 0;         // the farthest point from the eye (the origin)
     double smallest = kLargest;  // the smallest sphere's shortest semi-axis
     for (const PointLight& light : scene.lights)
@@ -32,6 +36,8 @@ CarefulNumerics needsCarefulNumerics(const Scene& scene) {
         double centre = glm::length(glm::dvec3(m[3])), stretch = largestStretch(m);
         if (o.type == ShapeType::Sphere) {
             double shortest = smallestStretch(m);
+            // a plate: the intersection shader refines its hits (sphere.rint)
+            squashed = squashed || stretch > kSquash * shortest;
             // the eye's distance from the surface, at least (0: it may be on it)
             double nearest = centre > stretch     ? centre - stretch
                              : centre < shortest ? shortest - centre
@@ -52,7 +58,7 @@ CarefulNumerics needsCarefulNumerics(const Scene& scene) {
     }
     // A sphere's object space divides by its size: lengths grow by extent / smallest.
     careful.sizes = careful.sizes || extent > kLargest || smallest < kSmallest ||
-                    extent > kLargest * smallest;
+                    extent > kLargest * smallest || squashed;
     return careful;
 }
 // [end]
