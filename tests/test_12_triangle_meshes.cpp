@@ -163,6 +163,13 @@ TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
     };
     std::vector<Case> cases = {
         {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "uses vertex 9, but there are 3 vertices"},
+        // tinyobjloader reads these as 0: refused, naming the line and the value
+        {"nan.obj", "v 0 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\n", "nan.obj: line 2: v nan 1 0: nan is not a finite number"},
+        {"inf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 -inf 0  # a comment\r\nf 1 2 3\r\n",
+         "inf.obj: line 3: v 0 -inf 0  # a comment: -inf is not a finite number"},
+        {"huge.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", "line 2: v 1e999 0 0: 1e999 is not a finite number"},
+        {"normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 NaN\nf 1//1 2//1 3//1\n", "line 4: vn 0 0 NaN: NaN is not a finite number"},
+        {"word.obj", "v 0 0 0\nv 1 0 0\nvt 0 one\nf 1 2 3\n", "line 3: vt 0 one: one is not a number"},
         {"nan.gltf", triangleGltf({0, 0, 0, 1, NAN, 0, 0, 1, 0}, 3), "vertex 1 is not a finite number"},
         {"empty.obj", "# nothing\n", "empty"},
         {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "no triangles"},
@@ -187,6 +194,62 @@ TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
               dir + "/bare.json: objects[0].material: missing: tri.obj names no material for its mesh");
 }
 
+// A mesh written far from its file's origin (issue 45): the same glass ball
+// as an OBJ with its vertices around (X, 0, -X), placed back by the scene's
+// transform, must look like the ball written at the origin. The loader reads
+// the file in double and recentres each mesh on its box before its vertices
+// become floats (Mesh::origin); the floats would otherwise be spaced 0.06
+// apart at 1e6 and the ball's facets would go astray.
+TEST(Meshes, AMeshWrittenFarFromItsOriginLooksTheSame) {
+    std::string dir = rgtest::outputDir("12_far_mesh");
+    rg::Mesh ball = rg::icosphere(4);
+    auto render = [&](double X) {
+        std::string name = "ball_" + std::to_string(int(std::log10(std::max(X, 1.0))));
+        std::string obj;
+        char line[128];
+        for (const glm::vec3& v : ball.vertices) {
+            std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", double(v.x) + X, double(v.y),
+                          double(v.z) - X);
+            obj += line;
+        }
+        for (const glm::vec3& n : ball.normals) {
+            std::snprintf(line, sizeof line, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
+            obj += line;
+        }
+        for (size_t t = 0; t < ball.indices.size(); t += 3) {
+            uint32_t a = ball.indices[t] + 1, b = ball.indices[t + 1] + 1, c = ball.indices[t + 2] + 1;
+            obj += "f " + std::to_string(a) + "//" + std::to_string(a) + " " + std::to_string(b) + "//" +
+                   std::to_string(b) + " " + std::to_string(c) + "//" + std::to_string(c) + "\n";
+        }
+        writeText(dir + "/" + name + ".obj", obj);
+        char translate[96];
+        std::snprintf(translate, sizeof translate, "[%.17g, 0, %.17g]", -X, X);
+        writeText(dir + "/" + name + ".json",
+                  R"({"camera": {"position": [0.4, 0.3, 3], "look_at": [0, 0, 0], "fov_y_deg": 40},
+                      "sky": {"image": "sky.png"},
+                      "materials": {"glass": {"ka": 0, "kd": 0, "ks": 0, "transmission": 1, "ior": 1.5}},
+                      "objects": [{"type": "mesh", "file": ")" + name + R"(.obj", "material": "glass",
+                                   "transform": {"translate": )" + translate + "}}]}");
+        rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene",
+                                                      dir + "/" + name + ".json", "--width", "160", "--height",
+                                                      "90", "--frames", "1", "--output", dir + "/" + name + "_out.png"});
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return rgtest::readPng(dir + "/" + name + "_out.png");
+    };
+    rgtest::Png atOrigin = render(0);
+    for (double X : {1e3, 1e4, 1e5, 1e6, 1e7}) {
+        rgtest::Png far = render(X);
+        ASSERT_EQ(far.rgb.size(), atOrigin.rgb.size());
+        size_t off = 0;
+        for (size_t i = 0; i < far.rgb.size(); i += 3) {
+            int worst = 0;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(far.rgb[i + c]) - int(atOrigin.rgb[i + c])));
+            off += worst > 1;
+        }
+        EXPECT_LE(double(off) / (far.rgb.size() / 3), 0.001) << "written at " << X << ": " << off << " pixels differ";
+    }
+}
+
 TEST(Meshes, ChaptersRefuseBadMeshesAndEarlierChaptersRefuseMeshes) {
     std::string dir = rgtest::outputDir("12_refusals");
     writeText(dir + "/range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
@@ -195,9 +258,16 @@ TEST(Meshes, ChaptersRefuseBadMeshesAndEarlierChaptersRefuseMeshes) {
     EXPECT_EQ(bad.exitCode, 2) << bad.output;
     EXPECT_NE(bad.output.find("uses vertex 9, but there are 3 vertices"), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(dir + "/x.png"));
+    writeText(dir + "/nan.obj", "v 0 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\n");
+    rgtest::RunResult nan = rgtest::run(RG_EXE_12, {"--headless", "--scene", meshScene(dir, "nan.obj"), "--output",
+                                                    dir + "/n.png"});
+    EXPECT_EQ(nan.exitCode, 2) << nan.output;
+    EXPECT_NE(nan.output.find("nan.obj: line 2: v nan 1 0: nan is not a finite number"), std::string::npos)
+        << nan.output;
+    EXPECT_FALSE(fs::exists(dir + "/n.png"));
     // Chapters 03-11 draw no meshes and say where they come.
     std::string scene = RG_SOURCE_DIR "/assets/scenes/meshes.json";
-    for (const char* exe : {RG_EXE_03, RG_EXE_06, RG_EXE_10, RG_EXE_11}) {
+    for (const char* exe : {RG_EXE_03, RG_EXE_04, RG_EXE_05, RG_EXE_06, RG_EXE_10, RG_EXE_11}) {
         rgtest::RunResult r = rgtest::run(exe, {"--headless", "--scene", scene, "--output", dir + "/y.png"});
         EXPECT_EQ(r.exitCode, 2) << exe << ": " << r.output;
         EXPECT_NE(r.output.find("triangle meshes come in chapter 12; run 12_triangle_meshes"), std::string::npos)

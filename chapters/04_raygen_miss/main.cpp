@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
         // made: precision anywhere in the world (chapter 06's page).
         rg::Scene scene = rg::toCameraSpace(rg::loadScene(
             opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene));
+        rg::refuseMeshes(scene);  // spheres and quads only, until chapter 12
         rg::App app;
         rg::initApp(app, opts, "RayGlass 04: ray generation and miss");
         rg::Image target = rg::createImage2D(

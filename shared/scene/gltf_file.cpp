@@ -19,6 +19,7 @@
 #include <iterator>
 #include <map>
 #include <tuple>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -306,6 +307,8 @@ MeshFile loadGltf(const std::string& path, bool binary) {
             mesh.indices.resize(mesh.vertices.size());
             for (uint32_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = i;
         }
+        // floats near 0: a mesh far from the file's origin keeps its shape
+        recentre(mesh);
         checkMesh(mesh);
         file.meshes.push_back(std::move(mesh));
         return it->second = int(file.meshes.size() - 1);
@@ -335,9 +338,12 @@ MeshFile loadGltf(const std::string& path, bool binary) {
                     if (material >= int(file.materials.size()))
                         fail(path, "node " + std::to_string(n) + ": material " +
                                        std::to_string(material) + " does not exist");
+                    // the mesh was recentred: its part puts it back
+                    glm::dmat4 origin =
+                        glm::translate(glm::dmat4(1.0), file.meshes[mesh].origin);
                     file.parts.push_back({.mesh = uint32_t(mesh),
                                           .material = material,
-                                          .transform = transform});
+                                          .transform = transform * origin});
                 }
             }
             for (int child : node.children) visit(child, transform, depth + 1);

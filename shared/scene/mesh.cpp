@@ -143,4 +143,17 @@ void checkMesh(Mesh& mesh) {
 }
 // [end]
 
+// [region recentre]
+void recentre(Mesh& mesh) {
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& v : mesh.vertices)
+        if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))
+            lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
+    if (!(lo.x <= hi.x)) return;  // no finite vertex: checkMesh names the first
+    glm::dvec3 centre = (lo + hi) / 2.0;
+    for (glm::vec3& v : mesh.vertices) v = glm::vec3(glm::dvec3(v) - centre);
+    mesh.origin += centre;
+}
+// [end]
+
 }  // namespace rg

@@ -26,6 +26,11 @@ struct Mesh {
     size_t openEdges = 0;
     size_t degenerate = 0;   // triangles dropped: zero area, or a repeated vertex
     glm::vec3 lo{0}, hi{0};  // bounding box of the vertices the triangles use
+    // Where the vertices' (0, 0, 0) lies in the file's own frame: file =
+    // vertex + origin. Loaders recentre each mesh on its box, in double, so a
+    // mesh written far from its file's origin keeps float's precision (a
+    // float's spacing is 0.06 at 1e6); its parts' transforms add `origin` back.
+    glm::dvec3 origin{0};
 };
 
 // A base colour texture (chapter 12), decoded to linear RGB: a mesh file's
@@ -43,6 +48,11 @@ struct Texture {
 // An icosahedron subdivided `level` times, vertices on the unit sphere (each
 // vertex's normal is its position): 20 * 4^level triangles.
 Mesh icosphere(int level);
+
+// Moves the vertices so that the centre of their box (of the finite ones)
+// is 0, in double, and adds that centre to `origin` (meshes written far
+// from their file's origin).
+void recentre(Mesh& mesh);
 
 // What every loaded mesh goes through (chapter 12). Throws InputError naming
 // `mesh.name` for an index out of range, a NaN or infinite vertex or

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include <iterator>
 #include <map>
 #include <tuple>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace rg {
@@ -29,9 +31,43 @@ namespace {
 
 // ---- OBJ -----------------------------------------------------------------
 
+namespace {
+// tinyobjloader reads "nan", "inf" or a word as 0 and goes on: a corner
+// silently at the origin. So every number of a v, vn or vt line is read
+// here first, and anything but a finite number refuses the file, naming
+// the line (as glTF's numbers are refused, mesh.cpp).
+void refuseNonFiniteNumbers(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        size_t at = line.find_first_not_of(" \t");
+        if (at == std::string::npos || line[at] != 'v') continue;  // fast: f, #, ...
+        size_t keyEnd = line.find_first_of(" \t", at);
+        std::string keyword = line.substr(at, keyEnd - at);
+        if (keyword != "v" && keyword != "vn" && keyword != "vt") continue;
+        size_t comment = line.find('#');
+        for (at = keyEnd; at < comment;) {
+            at = line.find_first_not_of(" \t", at);
+            if (at >= comment) break;
+            size_t wordEnd = std::min(line.find_first_of(" \t", at), comment);
+            std::string word = line.substr(at, wordEnd - at);
+            char* end = nullptr;
+            double value = std::strtod(word.c_str(), &end);
+            if (*end != '\0' || !std::isfinite(value))
+                fail(path, "line " + std::to_string(number) + ": " + line + ": " + word +
+                               (*end != '\0' ? " is not a number"
+                                              : " is not a finite number"));
+            at = wordEnd;
+        }
+    }
+}
+}  // namespace
+
 // One mesh per material the faces use; vertices that share position,
 // normal and texture coordinate indices are one vertex.
 MeshFile loadObj(const std::string& path) {
+    refuseNonFiniteNumbers(path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
@@ -71,6 +107,15 @@ MeshFile loadObj(const std::string& path) {
         }
         file.materials.push_back(f);
     }
+    // The file's numbers are read in double (tinyobjloader_double) and taken
+    // relative to the centre of their box before they become floats: a mesh
+    // written around (1e6, 0, 0) keeps its shape (Mesh::origin).
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
+        glm::dvec3 v(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
+        lo = glm::min(lo, v), hi = glm::max(hi, v);
+    }
+    glm::dvec3 centre = lo.x <= hi.x ? (lo + hi) / 2.0 : glm::dvec3(0);
     std::map<int, uint32_t> meshOfMaterial;
     std::vector<std::map<std::tuple<int, int, int>, uint32_t>> vertexOf;
     auto vertexCount = attrib.vertices.size() / 3,
@@ -118,15 +163,17 @@ MeshFile loadObj(const std::string& path) {
                     {index.vertex_index, normal, texcoord},
                     uint32_t(mesh.vertices.size()));
                 if (isNew) {
-                    const float* p = &attrib.vertices[3 * size_t(index.vertex_index)];
-                    mesh.vertices.push_back({p[0], p[1], p[2]});
+                    const tinyobj::real_t* p =
+                        &attrib.vertices[3 * size_t(index.vertex_index)];
+                    mesh.vertices.push_back(glm::dvec3(p[0], p[1], p[2]) - centre);
                     if (normal >= 0) {
-                        const float* n = &attrib.normals[3 * size_t(normal)];
-                        mesh.normals.push_back({n[0], n[1], n[2]});
+                        const tinyobj::real_t* n = &attrib.normals[3 * size_t(normal)];
+                        mesh.normals.push_back(glm::dvec3(n[0], n[1], n[2]));
                     }
                     if (texcoord >= 0) {  // OBJ's v points up the image, glTF's down
-                        const float* uv = &attrib.texcoords[2 * size_t(texcoord)];
-                        mesh.texcoords.push_back({uv[0], 1.0f - uv[1]});
+                        const tinyobj::real_t* uv =
+                            &attrib.texcoords[2 * size_t(texcoord)];
+                        mesh.texcoords.push_back(glm::dvec2(uv[0], 1.0 - uv[1]));
                     }
                 }
                 mesh.indices.push_back(v->second);
@@ -139,8 +186,12 @@ MeshFile loadObj(const std::string& path) {
         if (mesh.normals.size() != mesh.vertices.size()) mesh.normals.clear();
         // some without: untextured
         if (mesh.texcoords.size() != mesh.vertices.size()) mesh.texcoords.clear();
+        mesh.origin = centre;
+        recentre(mesh);  // each mesh on its own box
         checkMesh(mesh);
     }
+    for (MeshPart& part : file.parts)
+        part.transform = glm::translate(glm::dmat4(1.0), file.meshes[part.mesh].origin);
     if (file.meshes.empty()) fail(path, "no faces: an empty mesh");
     return file;
 }
