@@ -156,8 +156,10 @@ struct GpuMaterial {
                    // width, height (0: none), TEXTURE_* flags
     // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
     vec4 medium;
+    uvec4 flags;   // x: MATERIAL_* bits; y, z, w unused
 };
-RG_SIZE(GpuMaterial, 112);
+RG_SIZE(GpuMaterial, 128);
+#define MATERIAL_THIN 1u  // thin-walled transmission: crossed unbent (Material::thin)
 // [end]
 
 // GpuMaterial::texture.w: how each axis wraps (glTF's samplers), and the filter.

@@ -250,6 +250,79 @@ TEST(Meshes, AMeshWrittenFarFromItsOriginLooksTheSame) {
     }
 }
 
+// glTF's thin-walled default (KHR_materials_volume): a transmissive material
+// without a thicknessFactor above 0 is a surface with no volume behind it,
+// a window pane modelled as one quad. Light crosses it unbent. Read off the
+// picture: the sky is a ramp whose red / green says the direction a pixel's
+// ray ends in (optics_image.h), and the pane, turned 40 degrees, reflects
+// into the sky's black part; so through a thin pane every pixel reads the
+// ramp where the same pixel reads it with no pane at all. The same quad as
+// solid glass (thicknessFactor 1) bends the rays: the reading moves.
+TEST(Meshes, AThinWalledPaneLetsLightThroughUnbent) {
+    std::string dir = rgtest::outputDir("12_thin_walled");
+    namespace optics = rgtest::optics;
+    optics::writeRampSky(dir + "/sky.png", 256, 64, [](int x, int y) {
+        // 45 degrees either side of straight ahead (-z), 22.5 degrees about the horizon
+        return x >= 96 && x < 160 && y >= 24 && y < 40 ? (x - 96) * 4 : -1;
+    });
+    auto pane = [&](const std::string& name, const nlohmann::json& volume) {
+        nlohmann::json gltf = nlohmann::json::parse(
+            triangleGltf({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0}, 6));
+        nlohmann::json extensions = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                     {"KHR_materials_ior", {{"ior", 1.5}}}};
+        gltf["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_ior"};
+        if (!volume.is_null()) {
+            extensions["KHR_materials_volume"] = volume;
+            gltf["extensionsUsed"].push_back("KHR_materials_volume");
+        }
+        gltf["materials"] = {{{"name", "pane"},
+                              {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.0}}},
+                              {"extensions", extensions}}};
+        gltf["meshes"][0]["primitives"][0]["material"] = 0;
+        writeText(dir + "/" + name + ".gltf", gltf.dump());
+        nlohmann::json scene = {
+            {"camera", {{"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 20}}},
+            {"sky", {{"image", "sky.png"}}}, {"ambient", 0}, {"materials", {{"unused", nlohmann::json::object()}}},
+            // a scene has an object: a small ball behind the camera, seen by no ray of interest
+            {"objects", {{{"type", "sphere"}, {"center", {0, 0, 50}}, {"radius", 0.1}, {"material", "unused"}}}}};
+        if (name != "none")
+            scene["objects"].push_back({{"type", "mesh"}, {"file", name + ".gltf"},
+                                        {"transform", {{"rotate_deg", {0, 40, 0}}, {"scale", {1.5, 1.5, 1.5}}}}});
+        std::ofstream(dir + "/" + name + "_scene.json") << scene.dump();
+        return dir + "/" + name + "_scene.json";
+    };
+    std::string none = pane("none", nullptr), thin = pane("thin", nullptr),
+                solid = pane("solid", {{"thicknessFactor", 1.0}});
+    // What the loader makes of the two files.
+    EXPECT_TRUE(rg::loadScene(thin).materials.back().thin);
+    EXPECT_FALSE(rg::loadScene(solid).materials.back().thin);
+    for (const char* exe : {RG_EXE_12, RG_EXE_13}) {
+        std::string tag = std::filesystem::path(exe).filename().string();
+        auto render = [&](const std::string& scene, const std::string& name) {
+            return optics::renderOptics(exe, scene, 96, 96, dir + "/" + tag + "_" + name + ".pfm", {});
+        };
+        rg::FloatImage open = render(none, "none"), through = render(thin, "thin"), bent = render(solid, "solid");
+        ASSERT_EQ(through.rgba.size(), open.rgba.size());
+        int behind = 0, moved = 0, bentAway = 0;
+        double worst = 0;
+        for (size_t i = 0; i < open.rgba.size(); i += 4) {
+            double a = optics::rampPosition(&open.rgba[i]);
+            if (a < 0) continue;
+            // behind the pane: its two surfaces keep 1 - F of the light
+            if (!(through.rgba[i + 1] < 0.99 * open.rgba[i + 1])) continue;
+            ++behind;
+            double b = optics::rampPosition(&through.rgba[i]), c = optics::rampPosition(&bent.rgba[i]);
+            worst = std::max(worst, b < 0 ? 999.0 : std::abs(b - a));
+            moved += b < 0 || std::abs(b - a) > 0.05;
+            bentAway += c < 0 || std::abs(c - a) > 2;
+        }
+        EXPECT_GT(behind, 2000) << tag << ": the pane should cover much of the picture";
+        EXPECT_EQ(moved, 0) << tag << ": through the thin pane a pixel's ray went elsewhere (worst "
+                            << worst << " ramp codes)";
+        EXPECT_GT(bentAway, behind / 2) << tag << ": solid glass should bend the rays";
+    }
+}
+
 TEST(Meshes, ChaptersRefuseBadMeshesAndEarlierChaptersRefuseMeshes) {
     std::string dir = rgtest::outputDir("12_refusals");
     writeText(dir + "/range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
@@ -303,6 +376,7 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_EQ(f.attenuationDistance, 0.5);
     EXPECT_EQ(f.attenuationColor, glm::dvec3(0.5, 0.25, 1));
     EXPECT_EQ(f.dispersion, 0.3);
+    EXPECT_EQ(f.thickness, 0.1);  // above 0: a volume, not a thin wall
     ASSERT_EQ(file.parts.size(), 1u);
     EXPECT_EQ(file.parts[0].material, 0);
     // Its mapping onto RayGlass's material (docs/scene-format.md).
@@ -317,6 +391,7 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_NEAR(m.kd.g, 0.4 * 0.75 * 0.25, 1e-12);  // base (1 - metallic) (1 - transmission)
     EXPECT_NEAR(m.reflectivity, 0.25 * 0.25, 1e-12);
     EXPECT_EQ(m.transmission, 0.75);
+    EXPECT_FALSE(m.thin);
     EXPECT_EQ(m.ior, 1.33);
     EXPECT_NEAR(m.f0, std::pow(0.33 / 2.33, 2), 1e-12);
     // Beer-Lambert: after 0.5, white keeps the attenuation colour.

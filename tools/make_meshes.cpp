@@ -270,7 +270,6 @@ void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json materi
     if (!binary) buffer["uri"] = binName;
     nlohmann::json j = {
         {"asset", {{"version", "2.0"}, {"generator", "RayGlass tools/make_meshes"}}},
-        {"extensionsUsed", {"KHR_materials_transmission", "KHR_materials_ior"}},
         {"scene", 0},
         {"scenes", {{{"nodes", {0}}}}},
         {"nodes", {{{"mesh", 0}, {"name", "object"}}}},
@@ -285,6 +284,8 @@ void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json materi
                        {{"bufferView", 1}, {"componentType", 5126}, {"count", m.normals.size()}, {"type", "VEC3"}},
                        {{"bufferView", 2}, {"componentType", 5125}, {"count", m.indices.size()}, {"type", "SCALAR"}}}},
     };
+    if (material.contains("extensions"))  // the material's, and no others
+        for (const auto& [name, value] : material["extensions"].items()) j["extensionsUsed"].push_back(name);
     if (!m.texcoords.empty()) {
         j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 3;
         j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", tOffset}, {"byteLength", tBytes}, {"target", 34962}});
@@ -317,7 +318,11 @@ void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json materi
 nlohmann::json glassMaterial(const std::string& name, double ior) {
     return {{"name", name},
             {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}}},
-            {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", ior}}}}}};
+            // a volume of glass, not a thin wall: KHR_materials_volume's thickness
+            // (its value is a rasterizer's hint; the mesh itself bounds the glass)
+            {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                            {"KHR_materials_ior", {{"ior", ior}}},
+                            {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}}};
 }
 
 }  // namespace

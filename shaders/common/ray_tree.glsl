@@ -35,9 +35,13 @@ Split splitBetween(GpuMaterial m, float n1, float n2, vec3 n, vec3 direction) {
 // Chapters 09-12: every glass has air outside (chapter 13: media.glsl).
 Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     float ior = m.params.w;
-    // Entering: air into the glass; leaving: the ratio inverts.
-    return entering ? splitBetween(m, 1.0, ior, n, direction)
-                    : splitBetween(m, ior, 1.0, n, direction);
+    // Entering: air into the glass; leaving: the ratio inverts. A thin wall
+    // (MATERIAL_THIN) has air on both sides: from either, air into glass.
+    bool thin = (m.flags.x & MATERIAL_THIN) != 0u;
+    Split s = entering || thin ? splitBetween(m, 1.0, ior, n, direction)
+                               : splitBetween(m, ior, 1.0, n, direction);
+    if (thin) s.eta = 1.0;  // crossed unbent
+    return s;
 }
 // [end]
 
@@ -132,9 +136,18 @@ void growBranch() {
     // air outside (ch 10)
     float n1 = entering ? 1.0 : m.params.w, n2 = entering ? m.params.w : 1.0;
     uint beyond = b.media;  // the media of a ray that crosses here (chapter 13)
+    // [region thin]
+    // A thin-walled surface (glTF's default for transmission without a
+    // volume, KHR_materials_volume): the same medium on both sides. Fresnel
+    // from that medium into the material's index, from either side; what
+    // crosses goes on unbent, and no medium begins or ends.
+    bool thin = (m.flags.x & MATERIAL_THIN) != 0u;
+    if (thin) n1 = mediumIor(currentMedium(b.media)), n2 = m.params.w;  // air: 1
+    // [end]
     // [region media]
 #ifdef NESTED_MEDIA
-    if (m.params.z > 0.0) {  // chapter 13: a medium's surface; which two media meet here?
+    // chapter 13: a medium's surface; which two media meet here?
+    if (m.params.z > 0.0 && !thin) {
         Boundary boundary =
             boundaryAt(b.media, objects[payload.object].material, entering);
         // no surface: the ray goes on into its new media, as deep as before
@@ -174,9 +187,10 @@ void growBranch() {
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 /
         // n2.
-        vec3 t = refractedDirection(b.direction, n, ns, s.eta),
+        vec3 t = thin ? b.direction : refractedDirection(b.direction, n, ns, s.eta),
              o = secondaryOrigin(p, e, -n);
-        float tMax = entering ? insideReach(o, p, radius) : kInfinity;  // into the sphere
+        // into the sphere
+        float tMax = entering && !thin ? insideReach(o, p, radius) : kInfinity;
         uint depth = (b.depth + 1u) | spectral;
         if (t != vec3(0.0))
             tree.stack[tree.top++] = Branch(o, depth, t, tMax, tr, beyond);
@@ -185,7 +199,8 @@ void growBranch() {
     // [end]
     if (maxComponent(rf) >= MIN_THROUGHPUT) {
         vec3 o = secondaryOrigin(p, e, n);
-        float tMax = entering ? kInfinity : insideReach(o, p, radius);  // back into it
+        // back into it
+        float tMax = entering || thin ? kInfinity : insideReach(o, p, radius);
         vec3 r = reflectedDirection(b.direction, n, ns);
         tree.stack[tree.top++] =
             Branch(o, (b.depth + 1u) | spectral, r, tMax, rf, b.media);

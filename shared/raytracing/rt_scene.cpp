@@ -146,7 +146,8 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
             glm::vec4(float(m.f0), float(m.roughness), float(m.dispersion / 20),
                       float(m.glass)),
             texture,
-            glm::vec4(glm::vec3(m.absorption), float(m.priority))};
+            glm::vec4(glm::vec3(m.absorption), float(m.priority)),
+            glm::uvec4(m.thin ? MATERIAL_THIN : 0u, 0u, 0u, 0u)};
 }
 
 // The scene's buffers and structures against the device's limits, before

@@ -48,8 +48,10 @@ Split splitAt(const ReferenceSettings& settings, const Material& m, double n1, d
 // Chapters 08-12: air outside every material.
 Split splitAt(const ReferenceSettings& settings, const Material& m, bool entering,
               double cosI) {
-    return entering ? splitAt(settings, m, 1.0, m.ior, cosI)
-                    : splitAt(settings, m, m.ior, 1.0, cosI);
+    // a thin wall (chapter 10 on) has air on both sides: air into glass
+    bool thin = m.thin && settings.stage >= ReferenceStage::Refraction;
+    return entering || thin ? splitAt(settings, m, 1.0, m.ior, cosI)
+                            : splitAt(settings, m, m.ior, 1.0, cosI);
 }
 
 // Chapter 13's media (written again from the rule on docs/13_real_glass.md,

@@ -89,9 +89,13 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     bool entering = hit.frontFace;
     // air outside (chapter 10)
     double n1 = entering ? 1.0 : m.ior, n2 = entering ? m.ior : 1.0;
+    // A thin wall (Material::thin): the same medium on both sides; Fresnel
+    // from it into the material from either side, the light crossing unbent.
+    bool thin = m.thin && settings.stage >= ReferenceStage::Refraction;
+    if (thin) n1 = nested ? mediumIor(scene_, here) : 1.0, n2 = m.ior;
     const glm::dvec3 arriving = throughput * kept;
     MediumStack beyond = media;  // chapter 13: the media of a ray that crosses here
-    if (nested && m.transmission > 0) {
+    if (nested && m.transmission > 0 && !thin) {
         uint32_t material = scene_.objects[hit.object].material;
         int from = here;
         if (entering) {
@@ -160,9 +164,9 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         return settings.stage < ReferenceStage::Refraction ||
                std::max({t.r, t.g, t.b}) >= kMinThroughput;
     };
-    glm::dvec3 t;
+    glm::dvec3 t = direction;  // a thin wall's: unbent
     if (refracted > 0 && strongEnough(refracted)) {
-        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+        if (thin || refractSides(direction, n, ns, split.n1, split.n2, t))
             color +=
                 refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
                                      depth + 1, arriving * refracted, beyond, passes);
@@ -244,8 +248,8 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
         color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
                               split.highlight);
     if (refracted >= 1e-4) {
-        glm::dvec3 t;
-        if (refractSides(direction, n, ns, split.n1, split.n2, t))
+        glm::dvec3 t = direction;  // a thin wall's: unbent
+        if (m.thin || refractSides(direction, n, ns, split.n1, split.n2, t))
             color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
                                           1, glm::dvec3(refracted));
         else

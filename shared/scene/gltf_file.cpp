@@ -26,9 +26,6 @@
 namespace rg {
 
 namespace {
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    throw InputError(path + ": " + what);
-}
 
 // ---- glTF ----------------------------------------------------------------
 
@@ -41,19 +38,20 @@ struct AccessorReader {
     const unsigned char* bytes(int index, int type, size_t componentSize, size_t& count,
                                size_t& stride, const std::string& what) const {
         if (index < 0 || size_t(index) >= model.accessors.size())
-            fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+            refuseFile(path,
+                       what + ": accessor " + std::to_string(index) + " does not exist");
         const tinygltf::Accessor& a = model.accessors[index];
-        if (a.sparse.isSparse) fail(path, what + ": sparse accessors are not read");
+        if (a.sparse.isSparse) refuseFile(path, what + ": sparse accessors are not read");
         if (a.type != type)
-            fail(path, what + ": accessor " + std::to_string(index) +
-                           " has the wrong element type");
+            refuseFile(path, what + ": accessor " + std::to_string(index) +
+                                 " has the wrong element type");
         if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size())
-            fail(path,
-                 what + ": accessor " + std::to_string(index) + " has no buffer view");
+            refuseFile(path, what + ": accessor " + std::to_string(index) +
+                                 " has no buffer view");
         const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
         if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-            fail(path, what + ": buffer view " + std::to_string(a.bufferView) +
-                           " has no buffer");
+            refuseFile(path, what + ": buffer view " + std::to_string(a.bufferView) +
+                                 " has no buffer");
         const tinygltf::Buffer& buffer = model.buffers[view.buffer];
         int components = tinygltf::GetNumComponentsInType(a.type);
         size_t element = componentSize * size_t(components);
@@ -63,16 +61,17 @@ struct AccessorReader {
         if (view.byteOffset > buffer.data.size() ||
             view.byteLength > buffer.data.size() - view.byteOffset ||
             need > view.byteLength)
-            fail(path, what + ": accessor " + std::to_string(index) +
-                           " reaches past the end of its buffer");
+            refuseFile(path, what + ": accessor " + std::to_string(index) +
+                                 " reaches past the end of its buffer");
         return buffer.data.data() + view.byteOffset + a.byteOffset;
     }
 
     std::vector<glm::vec3> vec3s(int index, const std::string& what) const {
         if (index >= 0 && size_t(index) < model.accessors.size() &&
             model.accessors[index].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-            fail(path,
-                 what + ": only float components are read (no KHR_mesh_quantization)");
+            refuseFile(
+                path,
+                what + ": only float components are read (no KHR_mesh_quantization)");
         size_t count, stride;
         const unsigned char* p = bytes(index, TINYGLTF_TYPE_VEC3, 4, count, stride, what);
         std::vector<glm::vec3> out(count);
@@ -85,7 +84,8 @@ struct AccessorReader {
     // (glTF 3.7.2.1).
     std::vector<glm::vec2> vec2s(int index, const std::string& what) const {
         if (index < 0 || size_t(index) >= model.accessors.size())
-            fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+            refuseFile(path,
+                       what + ": accessor " + std::to_string(index) + " does not exist");
         const tinygltf::Accessor& a = model.accessors[index];
         int type = a.componentType;
         size_t size = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
@@ -93,7 +93,8 @@ struct AccessorReader {
                       : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
                                                                        : 0;
         if (size == 0 || (size < 4 && !a.normalized))
-            fail(path, what +
+            refuseFile(path,
+                       what +
                            ": texture coordinates must be floats or normalized unsigned "
                            "bytes or shorts");
         size_t count, stride;
@@ -113,14 +114,15 @@ struct AccessorReader {
 
     std::vector<uint32_t> indices(int index, const std::string& what) const {
         if (index < 0 || size_t(index) >= model.accessors.size())
-            fail(path, what + ": accessor " + std::to_string(index) + " does not exist");
+            refuseFile(path,
+                       what + ": accessor " + std::to_string(index) + " does not exist");
         int type = model.accessors[index].componentType;
         size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
                       : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
                       : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
                                                                        : 0;
         if (size == 0)
-            fail(path, what + ": indices must be unsigned bytes, shorts or ints");
+            refuseFile(path, what + ": indices must be unsigned bytes, shorts or ints");
         size_t count, stride;
         const unsigned char* p =
             bytes(index, TINYGLTF_TYPE_SCALAR, size, count, stride, what);
@@ -195,8 +197,9 @@ MeshFile loadGltf(const std::string& path, bool binary) {
     if (!ok) {
         std::replace(error.begin(), error.end(), '\n', ' ');
         while (!error.empty() && error.back() == ' ') error.pop_back();
-        fail(path, "not a glTF file tinygltf reads (" +
-                       (error.empty() ? std::string("no reason given") : error) + ")");
+        refuseFile(path, "not a glTF file tinygltf reads (" +
+                             (error.empty() ? std::string("no reason given") : error) +
+                             ")");
     }
     MeshFile file;
     // [region gltf_texture]
@@ -209,13 +212,14 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         if (!added) return it->second;
         std::string what =
             "material " + material + ": base colour texture " + std::to_string(index);
-        if (size_t(index) >= model.textures.size()) fail(path, what + " does not exist");
+        if (size_t(index) >= model.textures.size())
+            refuseFile(path, what + " does not exist");
         const tinygltf::Texture& texture = model.textures[index];
         if (texture.source < 0 || size_t(texture.source) >= model.images.size())
-            fail(path, what + " has no image");
+            refuseFile(path, what + " has no image");
         const tinygltf::Image& image = model.images[texture.source];
         if (image.image.size() != size_t(image.width) * image.height * 4)
-            fail(path, what + ": its image was not decoded");
+            refuseFile(path, what + ": its image was not decoded");
         Texture t = decodeTexture(path + ": image " + std::to_string(texture.source),
                                   image.image.data(), image.width, image.height);
         if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
@@ -245,8 +249,14 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         f.ior = std::clamp(extensionNumber(m.extensions, "KHR_materials_ior", "ior", 1.5),
                            1.0, 10.0);
         f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, f.name);
-        // KHR_materials_volume (chapter 13): the medium's absorption; its
-        // thickness factor is for rasterizers, a ray tracer meets the real one.
+        // KHR_materials_volume: a thicknessFactor above 0 makes a transmissive
+        // material a volume (its value is for rasterizers: a ray tracer meets
+        // the real thickness); without one it is thin-walled. The volume's
+        // absorption is chapter 13's.
+        f.thickness = extensionNumber(m.extensions, "KHR_materials_volume",
+                                      "thicknessFactor", 0.0);
+        if (!(f.thickness >= 0 && std::isfinite(f.thickness)))
+            refuseFile(path, "material " + f.name + ": thicknessFactor is not >= 0");
         f.attenuationDistance = extensionNumber(m.extensions, "KHR_materials_volume",
                                                 "attenuationDistance", 0.0);
         if (!(f.attenuationDistance > 0 && std::isfinite(f.attenuationDistance)))
@@ -255,7 +265,8 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         if (f.attenuationDistance > 0 && volume->second.Has("attenuationColor")) {
             const tinygltf::Value& c = volume->second.Get("attenuationColor");
             if (!c.IsArray() || c.ArrayLen() != 3)
-                fail(path, "material " + f.name + ": attenuationColor is not 3 numbers");
+                refuseFile(path,
+                           "material " + f.name + ": attenuationColor is not 3 numbers");
             for (int k = 0; k < 3; ++k)
                 f.attenuationColor[k] = std::clamp(
                     c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : 1.0, 1e-6, 1.0);
@@ -263,7 +274,7 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         f.dispersion =
             extensionNumber(m.extensions, "KHR_materials_dispersion", "dispersion", 0.0);
         if (!(f.dispersion >= 0 && f.dispersion <= 20))
-            fail(path, "material " + f.name + ": dispersion is not in [0, 20]");
+            refuseFile(path, "material " + f.name + ": dispersion is not in [0, 20]");
         file.materials.push_back(f);
     }
     AccessorReader read{model, path};
@@ -281,7 +292,7 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         }
         auto position = primitive.attributes.find("POSITION");
         if (position == primitive.attributes.end())
-            fail(path, what + ": no POSITION attribute");
+            refuseFile(path, what + ": no POSITION attribute");
         Mesh mesh{.name = path + ": " + what};
         mesh.vertices = read.vec3s(position->second, what + " POSITION");
         auto normal = primitive.attributes.find("NORMAL");
@@ -298,8 +309,8 @@ MeshFile loadGltf(const std::string& path, bool binary) {
             mesh.texcoords =
                 read.vec2s(texcoord->second, what + " TEXCOORD_" + std::to_string(set));
             if (mesh.texcoords.size() != mesh.vertices.size())
-                fail(path, what + ": TEXCOORD_" + std::to_string(set) +
-                               " and POSITION differ in count");
+                refuseFile(path, what + ": TEXCOORD_" + std::to_string(set) +
+                                     " and POSITION differ in count");
         }
         if (primitive.indices >= 0) {
             mesh.indices = read.indices(primitive.indices, what + " indices");
@@ -322,22 +333,23 @@ MeshFile loadGltf(const std::string& path, bool binary) {
     std::function<void(int, const glm::dmat4&, int)> visit =
         [&](int n, const glm::dmat4& parent, int depth) {
             if (n < 0 || size_t(n) >= model.nodes.size())
-                fail(path, "node " + std::to_string(n) + " does not exist");
+                refuseFile(path, "node " + std::to_string(n) + " does not exist");
             if (depth > 64 || ++visited > 10000000)
-                fail(path, "the node hierarchy is deeper than 64 or has a cycle");
+                refuseFile(path, "the node hierarchy is deeper than 64 or has a cycle");
             const tinygltf::Node& node = model.nodes[n];
             glm::dmat4 transform = parent * nodeTransform(node);
             if (node.mesh >= 0) {
                 if (size_t(node.mesh) >= model.meshes.size())
-                    fail(path, "node " + std::to_string(n) + ": mesh " +
-                                   std::to_string(node.mesh) + " does not exist");
+                    refuseFile(path, "node " + std::to_string(n) + ": mesh " +
+                                         std::to_string(node.mesh) + " does not exist");
                 for (size_t p = 0; p < model.meshes[node.mesh].primitives.size(); ++p) {
                     int mesh = primitiveMesh(node.mesh, int(p));
                     if (mesh < 0) continue;
                     int material = model.meshes[node.mesh].primitives[p].material;
                     if (material >= int(file.materials.size()))
-                        fail(path, "node " + std::to_string(n) + ": material " +
-                                       std::to_string(material) + " does not exist");
+                        refuseFile(path, "node " + std::to_string(n) + ": material " +
+                                             std::to_string(material) +
+                                             " does not exist");
                     // the mesh was recentred: its part puts it back
                     glm::dmat4 origin =
                         glm::translate(glm::dmat4(1.0), file.meshes[mesh].origin);
@@ -353,9 +365,10 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r)
                 if (!std::isfinite(part.transform[c][r]))
-                    fail(path, "a node's transform is not finite");
+                    refuseFile(path, "a node's transform is not finite");
     if (file.parts.empty())
-        fail(path, "no triangles placed (an empty mesh, or a scene without mesh nodes)");
+        refuseFile(path,
+                   "no triangles placed (an empty mesh, or a scene without mesh nodes)");
     return file;
 }
 

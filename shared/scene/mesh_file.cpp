@@ -2,10 +2,9 @@
 // images their materials name, decoded once to linear light.
 #include "scene/mesh_file.h"
 
-#include "scene/mesh_readers.h"
-
 #include "core/display.h"
 #include "core/files.h"
+#include "scene/mesh_readers.h"
 
 #include <stb_image.h>
 
@@ -21,11 +20,9 @@
 
 namespace rg {
 
-namespace {
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
+[[noreturn]] void refuseFile(const std::string& path, const std::string& what) {
     throw InputError(path + ": " + what);
 }
-}  // namespace
 
 namespace {
 std::string lowerExtension(const std::string& path) {
@@ -73,7 +70,7 @@ std::vector<unsigned char> readImageFile(const std::string& meshPath,
     // missing, a folder, a FIFO: each its own reason
     requireRegularFile(image, meshPath + ": map_Kd");
     std::ifstream in(image, std::ios::binary);
-    if (!in) fail(meshPath, "cannot read the image " + image);
+    if (!in) refuseFile(meshPath, "cannot read the image " + image);
     return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
 }
 
@@ -84,7 +81,7 @@ MeshFile loadMeshFile(const std::string& path) {
     if (extension == ".obj") return loadObj(path);
     if (extension == ".gltf" || extension == ".glb")
         return loadGltf(path, extension == ".glb");
-    fail(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
+    refuseFile(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
 }
 // [end]
 

@@ -26,6 +26,9 @@ struct FileMaterial {
     glm::dvec3 attenuationColor{1.0};
     // keeps after this distance in the scene's units; 0: no absorption
     double attenuationDistance = 0;
+    // KHR_materials_volume's thicknessFactor: > 0, the mesh bounds a volume
+    // of glass; 0 (the default), a transmissive surface is thin-walled
+    double thickness = 0;
     // KHR_materials_dispersion (chapter 13): 20 / Abbe number, 0: none
     double dispersion = 0;
     // index into MeshFile::textures (times baseColor), -1: none

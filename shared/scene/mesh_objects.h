@@ -37,12 +37,13 @@ inline Material materialFromFile(const FileMaterial& f) {
     m.ks = glm::dvec3(0.04 * (1 - f.roughness));
     m.reflectivity = f.metallic * (1 - f.transmission);
     m.transmission = f.transmission;
+    m.thin = f.transmission > 0 && !(f.thickness > 0);  // KHR_materials_volume
     m.ior = f.ior;
     m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
     // rough reflection only for metal (ch 11)
     m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;
     // ch 13
-    if (f.attenuationDistance > 0)
+    if (f.attenuationDistance > 0 && !m.thin)  // a thin wall holds no medium
         m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);
     m.dispersion = f.dispersion;  // ch 13
     return m;
@@ -73,8 +74,9 @@ public:
                      .transform = transform * part.transform,
                      .mesh = l.firstMesh + part.mesh};
             const Mesh& mesh = *scene_.meshes[o.mesh];
-            bool open =
-                scene_.materials[o.material].transmission > 0 && mesh.openEdges > 0;
+            // glass needs a closed surface; a thin wall (Material::thin) does not
+            const Material& glass = scene_.materials[o.material];
+            bool open = glass.transmission > 0 && !glass.thin && mesh.openEdges > 0;
             // once per mesh, however often it is placed
             if (open && warnedOpen_.insert(o.mesh).second)
                 std::fprintf(

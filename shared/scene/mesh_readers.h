@@ -8,6 +8,9 @@
 
 namespace rg {
 
+// Throws InputError "<path>: <what>": a mesh file's one-line refusal.
+[[noreturn]] void refuseFile(const std::string& path, const std::string& what);
+
 MeshFile loadObj(const std::string& path);                 // obj_file.cpp
 MeshFile loadGltf(const std::string& path, bool binary);   // gltf_file.cpp
 

@@ -23,12 +23,6 @@
 
 namespace rg {
 
-namespace {
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    throw InputError(path + ": " + what);
-}
-}  // namespace
-
 // ---- OBJ -----------------------------------------------------------------
 
 namespace {
@@ -55,9 +49,10 @@ void refuseNonFiniteNumbers(const std::string& path) {
             char* end = nullptr;
             double value = std::strtod(word.c_str(), &end);
             if (*end != '\0' || !std::isfinite(value))
-                fail(path, "line " + std::to_string(number) + ": " + line + ": " + word +
-                               (*end != '\0' ? " is not a number"
-                                              : " is not a finite number"));
+                refuseFile(
+                    path,
+                    "line " + std::to_string(number) + ": " + line + ": " + word +
+                        (*end != '\0' ? " is not a number" : " is not a finite number"));
             at = wordEnd;
         }
     }
@@ -76,8 +71,8 @@ MeshFile loadObj(const std::string& path) {
     if (!reader.ParseFromFile(path, config)) {
         std::string why = reader.Error();
         why.erase(std::remove(why.begin(), why.end(), '\n'), why.end());
-        fail(path, "not an OBJ file tinyobjloader reads (" +
-                       (why.empty() ? std::string("no reason given") : why) + ")");
+        refuseFile(path, "not an OBJ file tinyobjloader reads (" +
+                             (why.empty() ? std::string("no reason given") : why) + ")");
     }
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
     MeshFile file;
@@ -99,7 +94,7 @@ MeshFile loadObj(const std::string& path) {
             int w = 0, h = 0;
             std::string why = decodeImage(bytes.data(), int(bytes.size()), w, h, rgba);
             if (!why.empty())
-                fail(path, "material " + m.name + ": map_Kd " + image + ": " + why);
+                refuseFile(path, "material " + m.name + ": map_Kd " + image + ": " + why);
             Texture t = decodeTexture(image, rgba.data(), w, h);
             if (m.diffuse_texopt.clamp) t.wrapU = t.wrapV = TextureWrap::Clamp;
             f.baseColorTexture = int(file.textures.size());
@@ -140,23 +135,24 @@ MeshFile loadObj(const std::string& path) {
             }
             Mesh& mesh = file.meshes[it->second];
             if (corners != 3)
-                fail(path, "face " + std::to_string(f) + " of \"" + shape.name +
-                               "\" is not a triangle");
+                refuseFile(path, "face " + std::to_string(f) + " of \"" + shape.name +
+                                     "\" is not a triangle");
             for (size_t k = 0; k < 3; ++k) {
                 tinyobj::index_t index = shape.mesh.indices[offset + k];
                 if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertexCount)
-                    fail(path, "face " + std::to_string(f) + " uses vertex " +
-                                   std::to_string(index.vertex_index + 1) +
-                                   ", but there are " + std::to_string(vertexCount) +
-                                   " vertices");
+                    refuseFile(path, "face " + std::to_string(f) + " uses vertex " +
+                                         std::to_string(index.vertex_index + 1) +
+                                         ", but there are " +
+                                         std::to_string(vertexCount) + " vertices");
                 int normal = index.normal_index;
                 if (normal >= 0 && size_t(normal) >= normalCount)
-                    fail(path, "face " + std::to_string(f) + " uses normal " +
-                                   std::to_string(normal + 1) + ", but there are " +
-                                   std::to_string(normalCount) + " normals");
+                    refuseFile(path, "face " + std::to_string(f) + " uses normal " +
+                                         std::to_string(normal + 1) + ", but there are " +
+                                         std::to_string(normalCount) + " normals");
                 int texcoord = index.texcoord_index;
                 if (texcoord >= 0 && size_t(texcoord) >= texcoordCount)
-                    fail(path, "face " + std::to_string(f) + " uses texture coordinate " +
+                    refuseFile(path,
+                               "face " + std::to_string(f) + " uses texture coordinate " +
                                    std::to_string(texcoord + 1) + ", but there are " +
                                    std::to_string(texcoordCount));
                 auto [v, isNew] = vertexOf[it->second].try_emplace(
@@ -192,7 +188,7 @@ MeshFile loadObj(const std::string& path) {
     }
     for (MeshPart& part : file.parts)
         part.transform = glm::translate(glm::dmat4(1.0), file.meshes[part.mesh].origin);
-    if (file.meshes.empty()) fail(path, "no faces: an empty mesh");
+    if (file.meshes.empty()) refuseFile(path, "no faces: an empty mesh");
     return file;
 }
 

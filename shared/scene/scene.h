@@ -49,6 +49,10 @@ struct Material {
     double ior = 1.517;            // index of refraction (ch 09-10)
     double f0 = 0.08;              // Schlick's reflectance at normal incidence (ch 09)
     double roughness = 0;          // lobe width for rough reflection (ch 11)
+    // A transmissive surface with no volume behind it (glTF's thin-walled
+    // default, KHR_materials_volume): light crosses it unbent, keeping the
+    // Fresnel share 1 - F, and no medium begins or ends there (ch 10 on).
+    bool thin = false;
     // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
     int texture = -1;
     // Chapter 13, for a material that transmits: the medium inside it.

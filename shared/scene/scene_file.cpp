@@ -177,7 +177,7 @@ Scene loadScene(const std::string& path) {
         r.onlyKeys(m, key,
                    {"ka", "kd", "ks", "shininess", "reflectivity", "transmission", "ior",
                     "f0", "roughness", "attenuation_color", "attenuation_distance",
-                    "priority", "dispersion"});
+                    "priority", "dispersion", "thin"});
         Material mat;
         mat.name = it.key();
         if (m.contains("ka")) mat.ka = r.vec3(m["ka"], key + ".ka", 0, 1);
@@ -190,6 +190,7 @@ Scene loadScene(const std::string& path) {
         if (m.contains("transmission"))
             mat.transmission = r.number(m["transmission"], key + ".transmission", 0, 1);
         if (m.contains("ior")) mat.ior = r.number(m["ior"], key + ".ior", 1, 10);
+        if (m.contains("thin")) mat.thin = r.boolean(m["thin"], key + ".thin");
         if (m.contains("f0")) mat.f0 = r.number(m["f0"], key + ".f0", 0, 1);
         if (m.contains("roughness"))
             mat.roughness = r.number(m["roughness"], key + ".roughness", 0, 1);
