@@ -157,10 +157,10 @@ TEST(Chapter10, TwoLaunchesMatchOneLaunch) {
 // (tests/optics/thin_plates_1e-5.json; 1e-3 is a hard case of every
 // chapter). Their hits' error bounds follow each axis through the transform
 // and the intersection shader refines a hit seen from far in the sphere's
-// own units (issue 45), so a plate refracts like a pane: the GPU matches the
+// own units (docs/06_diffuse.md), so a plate refracts like a pane: the GPU matches the
 // reference in double. Except at a rim: there the plate is thinner than
-// float can tell apart at its distance from the eye (at 5 units a float's
-// spacing is 5e-7; a refracted ray's offset, 16 such units, is as wide as the
+// float can tell apart at its distance from the eye (at 5 units a refracted
+// ray's offset is 16 * 2^-24 * 5, about 5e-6, hit_error.glsl: as thick as the
 // plate a fraction of a pixel from its edge). Which pixels those are is
 // geometry, found here in double: those whose 3x3 neighbours' rays do not
 // all hit, or all miss, a plate.

@@ -194,7 +194,7 @@ TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
               dir + "/bare.json: objects[0].material: missing: tri.obj names no material for its mesh");
 }
 
-// A mesh written far from its file's origin (issue 45): the same glass ball
+// A mesh written far from its file's origin (page 12): the same glass ball
 // as an OBJ with its vertices around (X, 0, -X), placed back by the scene's
 // transform, must look like the ball written at the origin. The loader reads
 // the file in double and recentres each mesh on its box before its vertices
