@@ -9,14 +9,9 @@
 #include <stb_image.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iterator>
-#include <map>
-#include <tuple>
 
 namespace rg {
 

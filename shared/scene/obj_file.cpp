@@ -3,7 +3,6 @@
 #include "scene/mesh_file.h"
 #include "scene/mesh_readers.h"
 
-#include "core/display.h"
 #include "core/files.h"
 
 #include <tiny_obj_loader.h>
@@ -11,15 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <iterator>
 #include <map>
 #include <tuple>
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 namespace rg {
 
