@@ -12,6 +12,8 @@
 //                    so no film of air is left between (chapter 13's priorities)
 //   ice_cube.obj     a 22 mm ice cube
 //   icosphere_N.obj  the unit icosphere at levels 1-5 (smooth normals)
+//   grid_box.obj     the cube [-1, 1]^3, each face a 32 x 32 grid of squares
+//                    (chapter 12's leak measurement: flat faces, exact edges)
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
 //                    embedded PNG) repeated 10 times each way, opaque and open
@@ -24,6 +26,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <tuple>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -327,6 +331,30 @@ nlohmann::json glassMaterial(const std::string& name, double ior) {
 
 }  // namespace
 
+// The cube [-1, 1]^3 whose every face is an n x n grid of squares, two
+// triangles each; a vertex where faces meet is one vertex (a closed mesh).
+// Its coordinates are exact in float (n a power of two).
+rg::Mesh gridBox(int n) {
+    rg::Mesh m;
+    std::map<std::tuple<double, double, double>, uint32_t> index;
+    auto vertex = [&](glm::dvec3 p) {
+        auto [it, added] = index.try_emplace({p.x, p.y, p.z}, uint32_t(m.vertices.size()));
+        if (added) m.vertices.push_back(glm::vec3(p));
+        return it->second;
+    };
+    // each face's normal and two axes with u x v = normal (counter-clockwise from outside)
+    const glm::dvec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+    const glm::dvec3 faces[6][3] = {{X, Y, Z}, {-X, Z, Y}, {Y, Z, X}, {-Y, X, Z}, {Z, X, Y}, {-Z, Y, X}};
+    for (const auto& f : faces)
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                auto at = [&](int a, int b) { return vertex(f[0] + (-1.0 + 2.0 * a / n) * f[1] + (-1.0 + 2.0 * b / n) * f[2]); };
+                uint32_t p = at(i, j), q = at(i + 1, j), r = at(i + 1, j + 1), s = at(i, j + 1);
+                m.indices.insert(m.indices.end(), {p, q, r, p, r, s});
+            }
+    return m;
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: make_meshes FOLDER\n");
@@ -344,6 +372,7 @@ int main(int argc, char** argv) {
         for (int level = 1; level <= 5; ++level)
             writeText(dir + "/icosphere_" + std::to_string(level) + ".obj",
                       toObj(rg::icosphere(level), "unit icosphere, level " + std::to_string(level)));
+        writeText(dir + "/grid_box.obj", toObj(gridBox(32), "the cube [-1, 1]^3, each face a 32 x 32 grid"));
         writeGltf(dir + "/torus_1m.glb", torus(40, 12, 1000, 500), glassMaterial("glass", 1.5), true);
         nlohmann::json stone = {{"name", "stone tiles"},
                                 {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"metallicFactor", 0.0},

@@ -1,36 +1,19 @@
 #version 460
 // Closest-hit for triangle meshes (chapter 12) and the tessellated sphere
 // (--sphere-mesh). Triangles need no intersection shader: the traversal
-// finds the hit itself, watertight, and hands over two barycentrics.
+// finds the hit itself and hands over two barycentrics (with --triangles
+// watertight, triangle.rint finds it and hands over the same two).
 // This shader reads the triangle's vertices by device address, and
 // describes the hit: the geometric normal of the flat triangle (offsets and
 // sides), the interpolated vertex normal (shading), and the side the ray
 // came from, from the hit kind (the winding), never from a normal.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_buffer_reference : require
-#extension GL_EXT_buffer_reference_uvec2 : require
 #include "rt_bindings.glsl"
+#include "mesh_buffers.glsl"
 #include "payload.glsl"
 #include "hit_error.glsl"
 #include "texture.glsl"
-
-// [region buffers]
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Floats {
-    float f[];
-};
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices {
-    uint i[];
-};
-layout(binding = RT_BINDING_MESHES, std430) readonly buffer Meshes { GpuMesh meshes[]; };
-
-vec3 vec3At(Floats data, uint vertex) {
-    return vec3(data.f[3u * vertex], data.f[3u * vertex + 1u], data.f[3u * vertex + 2u]);
-}
-vec2 vec2At(Floats data, uint vertex) {
-    return vec2(data.f[2u * vertex], data.f[2u * vertex + 1u]);
-}
-// [end]
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and third vertex
@@ -39,9 +22,7 @@ hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and thir
 void main() {
     GpuObject object = objects[gl_InstanceCustomIndexEXT];
     GpuMesh mesh = meshes[object.mesh];
-    Indices indices = Indices(mesh.indices);
-    uvec3 v = uvec3(indices.i[3u * gl_PrimitiveID], indices.i[3u * gl_PrimitiveID + 1u],
-                    indices.i[3u * gl_PrimitiveID + 2u]);
+    uvec3 v = triangleAt(mesh, gl_PrimitiveID);
     Floats positions = Floats(mesh.vertices);
     vec3 a = vec3At(positions, v.x), b = vec3At(positions, v.y),
          c = vec3At(positions, v.z);
@@ -58,8 +39,11 @@ void main() {
         vec3 world = n * mat3(gl_WorldToObjectEXT);
         if (dot(world, world) > 0.0) payload.shading = normalize(world);
     }
-    // The hardware's own verdict from the winding: no normal can get it wrong.
-    payload.frontFace = gl_HitKindEXT == gl_HitKindFrontFacingTriangleEXT ? 1u : 0u;
+    // The traversal's own verdict from the winding: no normal can get it
+    // wrong (or triangle.rint's, with --triangles watertight).
+    bool front = gl_HitKindEXT == gl_HitKindFrontFacingTriangleEXT ||
+                 gl_HitKindEXT == kHitKindFrontBox;
+    payload.frontFace = front ? 1u : 0u;
     payload.t = gl_HitTEXT;
     payload.position = gl_ObjectToWorldEXT * vec4(local, 1.0);
     // The point comes from the vertices, but the next ray's test against

@@ -28,6 +28,13 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                  "Spheres as icospheres subdivided this often (0: analytic spheres)", 0,
                  7)
         .live = false;  // the acceleration structures are built once
+    if (chapter.meshes)
+        params
+            .choice("--triangles", settings.triangles,
+                    "Ray-triangle test: the driver's own, or boxes and Woop, Benthin and "
+                    "Wald's watertight test in an intersection shader",
+                    {"builtin", "watertight"})
+            .live = false;
     enum { kAuto, kOn, kOff };  // --antialias, as chapter 04
     int antialias = kAuto;
     params.choice("--antialias", antialias,
@@ -70,10 +77,12 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         Image target = createImage2D(
             app.gpu, app.deletion, opts.width, opts.height, VK_FORMAT_R32G32B32A32_SFLOAT,
             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        TriangleTest triangles = TriangleTest(settings.triangles);
         RtScene rt = uploadScene(app.gpu, app.deletion, scene, target,
                                  {.groupSpheres = opts.groupSpheres,
                                   .fileOrder = opts.fileOrder,
-                                  .sphereMeshLevel = settings.sphereMesh});
+                                  .sphereMeshLevel = settings.sphereMesh,
+                                  .triangles = triangles});
 
         // [region shaders]
         // SBT: raygen | miss: sky, shadow | hit: quad, sphere, mesh
@@ -93,6 +102,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                           {}},
         };
         // [end]
+        // Chapter 12's --triangles watertight: boxes, and triangle.rint in them.
+        useTriangleTest(app.gpu, shaders, triangles);
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
         // switch them on at any time, headless runs only from the start.

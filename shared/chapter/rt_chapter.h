@@ -28,6 +28,8 @@ struct RtChapterSettings {
     int launches = -1;
     // --exposure, in stops: the image is the radiance times 2^exposure
     float exposure = 0;
+    // chapter 12 on, --triangles: 0 the driver's triangle test, 1 watertight (accel.h)
+    int triangles = 0;
 };
 
 struct RtChapter {

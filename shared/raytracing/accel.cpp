@@ -192,7 +192,7 @@ static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertice
 }
 
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMeshLevel,
-                           const Scene* scene, bool fileOrder) {
+                           const Scene* scene, bool fileOrder, TriangleTest test) {
     UnitShapes shapes;
     DeletionQueue inputs;  // vertex, index and AABB data are not needed after the build
     const VkBufferUsageFlags input =
@@ -222,30 +222,29 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     // Chapter 12: each mesh of the scene once, however many objects place it.
     if (scene)
         for (const auto& mesh : scene->meshes) {
-            shapes.stats.push_back({.name = mesh->name, .geometry = "triangles"});
+            shapes.stats.push_back({.name = mesh->name});
             if (fileOrder) {
                 shapes.meshes.push_back(
-                    buildMeshBlas(gpu, deletion, *mesh, shapes.stats.back()));
+                    buildMeshBlas(gpu, deletion, *mesh, shapes.stats.back(), test));
             } else {
                 Mesh ordered = *mesh;
                 medianSplitTriangles(ordered);
                 shapes.meshes.push_back(
-                    buildMeshBlas(gpu, deletion, ordered, shapes.stats.back()));
+                    buildMeshBlas(gpu, deletion, ordered, shapes.stats.back(), test));
             }
         }
     if (sphereMeshLevel > 0) {  // the tessellated alternative (performance.md)
-        shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel),
-                                .geometry = "triangles"});
+        shapes.stats.push_back({.name = "icosphere_" + std::to_string(sphereMeshLevel)});
         shapes.sphereMesh = int(shapes.meshes.size());
         shapes.meshes.push_back(buildMeshBlas(gpu, deletion, icosphere(sphereMeshLevel),
-                                              shapes.stats.back()));
+                                              shapes.stats.back(), test));
     }
     return shapes;
 }
 
 // [region mesh_blas]
 MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh,
-                       BlasStats& stats) {
+                       BlasStats& stats, TriangleTest test) {
     // Read by the build (BUILD_INPUT) and by the closest-hit shader through
     // its device address: one buffer serves both.
     const VkBufferUsageFlags usage =
@@ -265,9 +264,24 @@ MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh
                                mesh.texcoords.size() * sizeof(glm::vec2), usage);
     // Opaque, as every geometry here: no any-hit shader runs, the closest
     // triangle is the hit. maxVertex: the highest index a triangle may use.
-    VkAccelerationStructureGeometryKHR triangles =
-        triangleGeometry(m.vertices, uint32_t(mesh.vertices.size() - 1), m.indices);
-    m.blas = buildCompactedBlas(gpu, deletion, triangles, m.triangles, stats);
+    if (test == TriangleTest::Builtin) {
+        stats.geometry = "triangles";
+        m.blas = buildCompactedBlas(
+            gpu, deletion,
+            triangleGeometry(m.vertices, uint32_t(mesh.vertices.size() - 1), m.indices),
+            m.triangles, stats);
+        return m;
+    }
+    // --triangles watertight: boxes, needed only while the BLAS builds
+    DeletionQueue inputs;
+    std::vector<VkAabbPositionsKHR> boxes = triangleBoxes(mesh);
+    Buffer boxBuffer = createDeviceBuffer(
+        gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
+        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    stats.geometry = "triangle boxes";
+    m.blas =
+        buildCompactedBlas(gpu, deletion, aabbGeometry(boxBuffer), m.triangles, stats);
     return m;
 }
 // [end]

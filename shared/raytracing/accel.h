@@ -20,7 +20,7 @@ struct AccelerationStructure {
 
 struct BlasStats {
     std::string name;
-    std::string geometry;          // "triangles" or "aabbs"
+    std::string geometry;          // "triangles", "aabbs" or "triangle boxes"
     VkDeviceSize buildBytes = 0;   // size when built
     VkDeviceSize compactBytes = 0; // size after compaction
     double buildMs = 0, compactMs = 0;
@@ -36,10 +36,19 @@ struct MeshBlas {
     Buffer texcoords;                   // empty when the mesh has none (untextured)
     uint32_t triangles = 0;
 };
+// How rays meet a mesh's triangles (chapter 12's --triangles): the driver's
+// own test (Builtin), which the Vulkan specification does not require to be
+// watertight, or one box per triangle in the BLAS and Woop, Benthin and
+// Wald's test in an intersection shader (Watertight: shaders/common/triangle.rint).
+enum class TriangleTest { Builtin, Watertight };
 // Builds `mesh` as given: its triangles in the order they come (chapter 03:
 // on lavapipe that order is the tree; medianSplitTriangles first).
 MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh,
-                       BlasStats& stats);
+                       BlasStats& stats, TriangleTest test = TriangleTest::Builtin);
+// --triangles watertight: box k holds triangle k, a little larger than the
+// triangle, so that the traversal's own box test (in float, in ways the
+// specification leaves open) cannot drop a ray that grazes an edge.
+std::vector<VkAabbPositionsKHR> triangleBoxes(const Mesh& mesh);
 
 // The two unit shapes every scene object instances (scene.h): the quad
 // [-1,1] x {0} x [-1,1] as two triangles, and the box [-1,1]^3 that holds the
@@ -55,10 +64,12 @@ struct UnitShapes {
 };
 // sphereMeshLevel > 0 also builds an icosphere of that subdivision level,
 // which makeInstances then uses for every sphere instead of the analytic one.
-// `scene` (chapter 12): its meshes too, in median-split order unless `fileOrder`.
+// `scene` (chapter 12): its meshes too, in median-split order unless
+// `fileOrder`, tested as `test` says (the icosphere too).
 UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion,
                            int sphereMeshLevel = 0, const Scene* scene = nullptr,
-                           bool fileOrder = false);
+                           bool fileOrder = false,
+                           TriangleTest test = TriangleTest::Builtin);
 
 // The order in which objects go into a structure (thesis 2.2.1). A builder
 // may take the order it is given as the tree: lavapipe's splits the list at

@@ -206,14 +206,24 @@ void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky,
             std::to_string(as.maxPrimitiveCount) + ")");
 }
 
+void useTriangleTest(const Gpu& gpu, RtShaders& shaders, TriangleTest test) {
+    if (test == TriangleTest::Builtin) return;
+    if (!gpu.physical.shaderFloat64)
+        throw InputError(
+            "--triangles watertight: this driver has no shaderFloat64 (double in "
+            "shaders), which the test's exact edge step needs; use --triangles builtin");
+    for (uint32_t group : {HIT_GROUP_MESH, RAY_TYPE_SHADOW + HIT_GROUP_MESH})
+        shaders.hitGroups.at(group).intersection = "common/triangle.rint";
+}
+
 // [region layout]
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                     const Image& target, const SceneLayout& layout) {
     RtScene rt;
     rt.width = target.extent.width;
     rt.height = target.extent.height;
-    rt.shapes =
-        buildUnitShapes(gpu, deletion, layout.sphereMeshLevel, &scene, layout.fileOrder);
+    rt.shapes = buildUnitShapes(gpu, deletion, layout.sphereMeshLevel, &scene,
+                                layout.fileOrder, layout.triangles);
     // Chapter 03: which objects become boxes of the sphere group and which
     // instances, each list in the order its structure is built from.
     // a sphere mesh is instanced
@@ -308,8 +318,9 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
             {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
             {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
              VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+            // the closest hit, and --triangles watertight's intersection shader
             {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR},
             {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
              VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
         });

@@ -50,7 +50,14 @@ struct SceneLayout {
     bool fileOrder = false;    // build in the scene file's order, not medianSplitOrder
     // > 0: icospheres of that level, one instance each (never grouped)
     int sphereMeshLevel = 0;
+    // chapter 12's --triangles: the driver's triangle test or the watertight one
+    TriangleTest triangles = TriangleTest::Builtin;
 };
+
+// --triangles watertight: the mesh hit groups (primary and shadow rays) get
+// the intersection shader that finds the triangle in each box (triangle.rint).
+// Throws InputError where the device cannot run it (no double in shaders).
+void useTriangleTest(const Gpu& gpu, RtShaders& shaders, TriangleTest test);
 
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)

@@ -325,6 +325,7 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &rt};
     vkGetPhysicalDeviceFeatures2(choice.handle, &features);
     choice.traceRaysIndirect = rt.rayTracingPipelineTraceRaysIndirect;
+    choice.shaderFloat64 = features.features.shaderFloat64;
     return choice;
 }
 // [end]
@@ -359,10 +360,16 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present,
         // acceleration structures and the SBT live at GPU addresses
         .bufferDeviceAddress = VK_TRUE,
     };
+    VkPhysicalDeviceFeatures2 core{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &vulkan12,
+        // optional: exact edge tests in double (chapter 12's triangle.rint)
+        .features = {.shaderFloat64 = physical.shaderFloat64},
+    };
     std::vector<const char*> extensions = requiredDeviceExtensions(present);
     VkDeviceCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-        .pNext = &vulkan12,
+        .pNext = &core,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
         .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),

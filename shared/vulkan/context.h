@@ -29,6 +29,8 @@ struct PhysicalDeviceChoice {
     std::string driver;  // driver name and info, e.g. "llvmpipe / Mesa 25.0.7"
     // optional: a launch sized by the GPU (chapter 10's second launch)
     bool traceRaysIndirect = false;
+    // optional: double in shaders (chapter 12's --triangles watertight)
+    bool shaderFloat64 = false;
 };
 
 // The device extensions a ray tracing chapter needs.
