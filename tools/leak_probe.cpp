@@ -74,17 +74,11 @@ std::vector<uint32_t> traceOnGpu(rg::App& app, const rg::Scene& scene,
     Image target = createImage2D(gpu, deletion, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                                  VK_IMAGE_USAGE_STORAGE_BIT);
     RtScene rt = uploadScene(gpu, deletion, scene, target, {.triangles = test});
-    // the chapters' hit groups (chapter/rt_chapter.cpp), a raygen of its own
+    // the chapters' hit groups, a raygen of its own
     RtShaders shaders{
         .raygen = "leak_probe/probe.rgen",
         .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
-        .hitGroups = {{.closestHit = "common/quad.rchit"},
-                      {.closestHit = "common/sphere.rchit",
-                       .intersection = "common/sphere.rint"},
-                      {.closestHit = "common/mesh.rchit"},
-                      {},
-                      {.intersection = "common/sphere.rint"},
-                      {}},
+        .hitGroups = sceneHitGroups(),
     };
     useTriangleTest(gpu, shaders, test);
     RtPipeline pipeline =

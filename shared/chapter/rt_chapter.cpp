@@ -85,21 +85,14 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                   .triangles = triangles});
 
         // [region shaders]
-        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, mesh
-        // (primary rays), then the same three for shadow rays: no closest hit;
-        // the sphere still needs its intersection shader to be found at all.
+        // SBT: raygen | miss: sky, shadow | hit: quad, sphere, mesh (primary
+        // rays), then the same three for shadow rays (rt_pipeline.cpp).
         RtShaders shaders{
             .raygen =
                 (chapter.raygenFolder.empty() ? chapter.name : chapter.raygenFolder) +
                 "/raygen.rgen",
             .miss = {"common/sky.rmiss", "common/shadow.rmiss"},
-            .hitGroups = {{.closestHit = "common/quad.rchit"},
-                          {.closestHit = "common/sphere.rchit",
-                           .intersection = "common/sphere.rint"},
-                          {.closestHit = "common/mesh.rchit"},
-                          {},
-                          {.intersection = "common/sphere.rint"},
-                          {}},
+            .hitGroups = sceneHitGroups(),
         };
         // [end]
         // Chapter 12's --triangles watertight: boxes, and triangle.rint in them.

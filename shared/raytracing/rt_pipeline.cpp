@@ -148,4 +148,19 @@ void recordTrace(VkCommandBuffer cmd, const RtPipeline& p, VkDescriptorSet set,
 }
 // [end]
 
+// [region hit_groups]
+// SBT hit records: quad, sphere, mesh (camera and bounce rays), then the
+// same three for shadow rays (RAY_TYPE_SHADOW = 3): no closest hit there,
+// "a hit is a hit"; the sphere still needs its intersection shader to be
+// found at all.
+std::vector<HitGroup> sceneHitGroups() {
+    return {{.closestHit = "common/quad.rchit"},
+            {.closestHit = "common/sphere.rchit", .intersection = "common/sphere.rint"},
+            {.closestHit = "common/mesh.rchit"},
+            {},
+            {.intersection = "common/sphere.rint"},
+            {}};
+}
+// [end]
+
 }  // namespace rg

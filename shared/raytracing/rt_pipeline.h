@@ -16,6 +16,10 @@ struct HitGroup {
     std::string intersection;
 };
 
+// The hit groups of every ray tracing chapter from 05 on: quad, sphere and
+// mesh for camera and bounce rays, then the same three for shadow rays.
+std::vector<HitGroup> sceneHitGroups();
+
 struct RtShaders {
     std::string raygen;
     // the ray generation shader's specialization constant 0 (chapter 10: its launch)
