@@ -187,12 +187,48 @@ TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
     }
     EXPECT_NE(inputError([&] { rg::loadScene(meshScene(dir, "missing.obj")); }).find("no such file: missing.obj"),
               std::string::npos);
-    // An OBJ without materials needs the scene's.
+}
+
+// A mesh that names no material takes its format's default (glTF 2.0, 3.9.1:
+// "a default material MUST be used": base colour 1, metallic 1, roughness 1;
+// OBJ has none, a diffuse grey 0.8 stands in), and the scene says so once
+// per file; a scene's material still wins. The glTF triangle here has no
+// "materials" at all, as many exported models do for some of their meshes.
+TEST(Meshes, AMeshWithoutAMaterialTakesItsFormatsDefault) {
+    std::string dir = rgtest::outputDir("12_default_material");
     writeText(dir + "/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    writeText(dir + "/bare.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {}},
-        "objects": [{"type": "mesh", "file": "tri.obj"}]})");
-    EXPECT_EQ(inputError([&] { rg::loadScene(dir + "/bare.json"); }),
-              dir + "/bare.json: objects[0].material: missing: tri.obj names no material for its mesh");
+    writeText(dir + "/tri.gltf", triangleGltf({0, 0, 0, 1, 0, 0, 0, 1, 0}, 3));
+    writeText(dir + "/bare.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "objects": [{"type": "mesh", "file": "tri.obj"}, {"type": "mesh", "file": "tri.gltf"},
+                    {"type": "mesh", "file": "tri.gltf", "transform": {"translate": [2, 0, 0]}}]})");
+    rg::Scene scene = rg::loadScene(dir + "/bare.json");
+    ASSERT_EQ(scene.objects.size(), 3u);
+    const rg::Material& obj = scene.materials[scene.objects[0].material];
+    EXPECT_EQ(obj.name, "tri.obj: RayGlass's default for OBJ");
+    EXPECT_EQ(obj.kd, glm::dvec3(0.8));
+    EXPECT_EQ(obj.reflectivity, 0.0);
+    const rg::Material& gltf = scene.materials[scene.objects[1].material];
+    EXPECT_EQ(gltf.name, "tri.gltf: glTF's default material");
+    EXPECT_EQ(gltf.kd, glm::dvec3(0.0));     // metallic 1: no diffuse
+    EXPECT_EQ(gltf.reflectivity, 1.0);       // a full mirror
+    EXPECT_EQ(gltf.roughness, 1.0);          // as rough as can be
+    EXPECT_EQ(scene.objects[2].material, scene.objects[1].material);  // read once
+    // a chapter says so, once per file, and renders it
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", dir + "/bare.json",
+                                                  "--width", "32", "--height", "32", "--frames", "1",
+                                                  "--output", dir + "/bare_out.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("objects[1]: note: 1 of tri.gltf's meshes name no material: they take glTF's "
+                            "default material (base colour 1, metallic 1, roughness 1)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("objects[2]: note"), std::string::npos) << r.output;
+    // the scene's material wins, and then nothing is noted
+    rgtest::RunResult own = rgtest::run(RG_EXE_12, {"--headless", "--scene", meshScene(dir, "tri.gltf"), "--width",
+                                                    "32", "--height", "32", "--frames", "1", "--output",
+                                                    dir + "/own.png"});
+    ASSERT_EQ(own.exitCode, 0) << own.output;
+    EXPECT_EQ(own.output.find("note:"), std::string::npos) << own.output;
 }
 
 // A mesh written far from its file's origin (page 12): the same glass ball

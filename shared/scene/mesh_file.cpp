@@ -69,14 +69,34 @@ std::vector<unsigned char> readImageFile(const std::string& meshPath,
     return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
 }
 
+FileMaterial gltfDefaultMaterial() {
+    return {.name = "glTF's default material", .baseColor = glm::dvec3(1.0),
+            .metallic = 1, .roughness = 1};
+}
+
+FileMaterial objDefaultMaterial() {
+    return {.name = "RayGlass's default for OBJ",
+            .baseColor = glm::dvec3(0.8),
+            .metallic = 0,
+            .roughness = 1};
+}
+
 // [region load_mesh_file]
 MeshFile loadMeshFile(const std::string& path) {
     requireRegularFile(path, "mesh file");
     std::string extension = lowerExtension(path);
-    if (extension == ".obj") return loadObj(path);
-    if (extension == ".gltf" || extension == ".glb")
-        return loadGltf(path, extension == ".glb");
-    refuseFile(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
+    bool gltf = extension == ".gltf" || extension == ".glb";
+    if (extension != ".obj" && !gltf)
+        refuseFile(path, "not a mesh file RayGlass reads (.gltf, .glb or .obj)");
+    MeshFile file = gltf ? loadGltf(path, extension == ".glb") : loadObj(path);
+    // A part that names no material takes the format's default, once per file.
+    for (MeshPart& part : file.parts) {
+        if (part.material >= 0) continue;
+        if (file.defaultMaterialParts++ == 0)
+            file.materials.push_back(gltf ? gltfDefaultMaterial() : objDefaultMaterial());
+        part.material = int(file.materials.size() - 1);
+    }
+    return file;
 }
 // [end]
 

@@ -37,14 +37,19 @@ struct FileMaterial {
 
 struct MeshPart {
     uint32_t mesh = 0;        // index into MeshFile::meshes
-    int material = -1;        // index into MeshFile::materials, -1: the file gives none
+    // index into MeshFile::materials (-1 while a reader has found none: loadMeshFile
+    // gives such a part the format's default material)
+    int material = -1;
     glm::dmat4 transform{1};  // the file's own placement (glTF node hierarchy)
 };
 
 struct MeshFile {
     // each checked (checkMesh); one per glTF primitive, however often placed
     std::vector<Mesh> meshes;
+    // the file's own, then (if a part names none) the format's default
     std::vector<FileMaterial> materials;
+    // parts that name no material and take the default (materials.back())
+    size_t defaultMaterialParts = 0;
     std::vector<Texture> textures;  // the base colour textures the materials use, decoded
     std::vector<MeshPart> parts;
     size_t skippedPrimitives = 0;  // points and lines: not surfaces
@@ -55,5 +60,13 @@ struct MeshFile {
 // quantized positions), naming an image stb_image cannot decode, or holding
 // a mesh checkMesh refuses.
 MeshFile loadMeshFile(const std::string& path);
+
+// The material of a part that names none (MeshFile::defaultMaterialParts).
+// glTF defines one (glTF 2.0, 3.9.1: "If material is undefined, then a
+// default material MUST be used"): base colour 1, metallic 1, roughness 1,
+// a rough white metal. OBJ defines none; Blender's default stands in: a
+// diffuse grey of 0.8, not metal.
+FileMaterial gltfDefaultMaterial();
+FileMaterial objDefaultMaterial();
 
 }  // namespace rg

@@ -64,10 +64,14 @@ public:
         auto it = loaded_.find(file);
         if (it == loaded_.end()) it = loaded_.emplace(file, load(file, key)).first;
         const Loaded& l = it->second;
+        // once per file, and only where the scene gives no material instead
+        if (!material && l.defaultMaterialParts > 0 && noted_.insert(file).second)
+            std::fprintf(stderr,
+                         "%s: %s: note: %zu of %s's meshes name no material: they take "
+                         "%s\n",
+                         path_.c_str(), key.c_str(), l.defaultMaterialParts,
+                         name.c_str(), l.defaultMaterial.c_str());
         for (const MeshPart& part : l.parts) {
-            if (!material && part.material < 0)
-                r_.fail(key + ".material",
-                        "missing: " + name + " names no material for its mesh");
             Object o{.type = ShapeType::Mesh,
                      .material = material ? *material : l.materials[part.material],
                      .moving = moving,
@@ -93,6 +97,8 @@ private:
         uint32_t firstMesh = 0;
         std::vector<uint32_t> materials;  // the file's materials in the scene's list
         std::vector<MeshPart> parts;
+        size_t defaultMaterialParts = 0;  // parts that name none (mesh_file.h)
+        std::string defaultMaterial;      // what they take, for the note
     };
     Loaded load(const std::string& file, const std::string& key) {
         MeshFile mf;
@@ -101,7 +107,17 @@ private:
         } catch (const InputError& e) {
             throw InputError(path_ + ": " + key + ".file: " + e.what());
         }
-        Loaded l{.firstMesh = uint32_t(scene_.meshes.size()), .parts = mf.parts};
+        Loaded l{.firstMesh = uint32_t(scene_.meshes.size()),
+                 .parts = mf.parts,
+                 .defaultMaterialParts = mf.defaultMaterialParts};
+        if (mf.defaultMaterialParts > 0) {
+            const FileMaterial& d = mf.materials.back();
+            char values[96];
+            std::snprintf(values, sizeof values,
+                          " (base colour %g, metallic %g, roughness %g)", d.baseColor.x,
+                          d.metallic, d.roughness);
+            l.defaultMaterial = d.name + values;
+        }
         int firstTexture = int(scene_.textures.size());
         for (Texture& t : mf.textures)
             scene_.textures.push_back(std::make_shared<const Texture>(std::move(t)));
@@ -130,6 +146,7 @@ private:
     Scene& scene_;
     std::map<std::string, Loaded> loaded_;
     std::set<uint32_t> warnedOpen_;
+    std::set<std::string> noted_;  // files whose default material was named
 };
 
 }  // namespace rg
