@@ -189,6 +189,68 @@ TEST(Meshes, BadFilesAreRefusedByTheSceneWithOneLine) {
               std::string::npos);
 }
 
+// glTF files as people send them, with a part missing: each refusal names
+// the file and the cause in one line (exit 2).
+TEST(Meshes, MissingAndUnreadablePartsOfAGltfAreNamed) {
+    std::string dir = rgtest::outputDir("12_gltf_parts");
+    std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::string data = triangleGltf(xyz, 3);
+    // the same triangle with its buffer in a .bin that is not there
+    std::string lostBin = data;
+    size_t uri = lostBin.find("data:application");
+    lostBin.replace(uri, lostBin.find('"', uri) - uri, "gone%20away.bin");
+    // with a base colour texture whose image is missing, or is a KTX file
+    auto textured = [&](const std::string& image, const std::string& texture) {
+        std::string g = data;
+        g.insert(g.rfind('}'), R"(, "materials": [{"name": "leaf", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+            "textures": [)" + texture + R"(], "images": [{"uri": ")" + image + R"("}])");
+        size_t at = g.find(R"({"attributes": {"POSITION": 0}})");
+        g.replace(at, 31, R"({"attributes": {"POSITION": 0}, "material": 0})");
+        return g;
+    };
+    writeText(dir + "/leaf.ktx2", std::string("\xABKTX 20\xBB\r\n\x1A\n") + std::string(64, '\0'));
+    struct Case {
+        std::string name, text, expected;
+    };
+    std::vector<Case> cases = {
+        {"lost_bin.gltf", lostBin, "lost_bin.gltf: buffer 0: gone%20away.bin: not found (looked beside the file)"},
+        {"lost_image.gltf", textured("leaf.png", R"({"source": 0})"),
+         "lost_image.gltf: image 0: leaf.png: not found (looked beside the file)"},
+        {"ktx.gltf", textured("leaf.ktx2", R"({"source": 0})"),
+         "ktx.gltf: material leaf: base colour texture 0: image 0 is a KTX image, which RayGlass does not read "
+         "(PNG and JPEG only)"},
+        {"basisu.gltf", textured("leaf.ktx2", R"({"extensions": {"KHR_texture_basisu": {"source": 0}}})"),
+         "basisu.gltf: material leaf: base colour texture 0 has only a KTX image, which RayGlass does not read"},
+    };
+    for (const Case& c : cases) {
+        writeText(dir + "/" + c.name, c.text);
+        std::string message = inputError([&] { rg::loadScene(meshScene(dir, c.name)); });
+        EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
+        EXPECT_EQ(message.find("not a glTF file"), std::string::npos) << c.name << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << c.name << ": " << message;
+    }
+}
+
+// Two nodes of one file that place the same mesh at the same place: the
+// scene draws one, and says which, by the file's node names, not by the
+// scene's object numbers (the scene has one object, the file two parts).
+TEST(Meshes, CoincidingPartsOfAFileAreNamedByTheirNodes) {
+    std::string dir = rgtest::outputDir("12_coinciding_nodes");
+    std::string g = triangleGltf({0, 0, 0, 1, 0, 0, 0, 1, 0}, 3);
+    g.replace(g.find(R"("nodes": [{"mesh": 0}])"), 22,
+              R"("nodes": [{"mesh": 0, "name": "Leaf"}, {"mesh": 0, "name": "Leaf copy"}])");
+    g.replace(g.find(R"("scenes": [{"nodes": [0]}])"), 26, R"("scenes": [{"nodes": [0, 1]}])");
+    writeText(dir + "/twice.gltf", g);
+    std::string scene = meshScene(dir, "twice.gltf");
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--scene", scene, "--width", "16", "--height", "16",
+                                                  "--frames", "1", "--output", dir + "/twice.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("objects[0] (twice.gltf: node 1 \"Leaf copy\", primitive 0) coincides with objects[0] "
+                            "(twice.gltf: node 0 \"Leaf\", primitive 0); only the first is drawn"),
+              std::string::npos)
+        << r.output;
+}
+
 // A mesh that names no material takes its format's default (glTF 2.0, 3.9.1:
 // "a default material MUST be used": base colour 1, metallic 1, roughness 1;
 // OBJ has none, a diffuse grey 0.8 stands in), and the scene says so once

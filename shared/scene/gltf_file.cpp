@@ -8,9 +8,11 @@
 
 #include <stb_image.h>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include <functional>
 #include <iterator>
 #include <map>
+#include <set>
 #include <tuple>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -164,12 +167,22 @@ glm::dmat4 nodeTransform(const tinygltf::Node& node) {
 
 // tinygltf hands over each image's bytes (from a buffer view, a data URI or
 // a file beside the .gltf); stb_image decodes them, as it does the sky.
+// Its message begins with kImageError, so that loadGltf can tell it from
+// tinygltf's own. A KTX image (KHR_texture_basisu) is left undecoded and
+// listed in `ktx` (a std::set<int>): refused only if a material uses it, as
+// a file may give a PNG beside it for readers without KTX.
+const char kImageError[] = "image ";
 bool decodeGltfImage(tinygltf::Image* image, const int index, std::string* error,
                      std::string*, int, int, const unsigned char* bytes, int size,
-                     void*) {
+                     void* ktx) {
+    const unsigned char magic[] = {0xAB, 'K', 'T', 'X', ' '};
+    if (size >= 5 && std::memcmp(bytes, magic, sizeof magic) == 0) {
+        static_cast<std::set<int>*>(ktx)->insert(index);
+        return true;
+    }
     std::string why = decodeImage(bytes, size, image->width, image->height, image->image);
     if (!why.empty()) {
-        if (error) *error = "image " + std::to_string(index) + ": " + why;
+        if (error) *error = kImageError + std::to_string(index) + ": " + why;
         return false;
     }
     image->component = 4;
@@ -185,18 +198,67 @@ TextureWrap wrapOf(int mode) {
                                                            : TextureWrap::Repeat;
 }
 
+// A URI as glTF writes it (RFC 3986): %20 is a space.
+std::string decodeUri(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uri[i + 1]) &&
+            std::isxdigit(uri[i + 2])) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// The files a .gltf names beside itself (its buffers' .bin, its images),
+// each checked before tinygltf reads it, so that a missing one is named as
+// missing. A file tinygltf cannot parse is left to tinygltf's own message.
+void requireNamedFiles(const std::string& path) {
+    nlohmann::json j;
+    try {
+        std::ifstream in(path);
+        j = nlohmann::json::parse(in);
+    } catch (const std::exception&) {
+        return;
+    }
+    std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    for (const char* kind : {"buffers", "images"}) {
+        if (!j.contains(kind) || !j[kind].is_array()) continue;
+        for (size_t i = 0; i < j[kind].size(); ++i) {
+            const nlohmann::json& item = j[kind][i];
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string())
+                continue;
+            std::string uri = item["uri"];
+            if (uri.rfind("data:", 0) == 0) continue;
+            std::string what = std::string(kind == std::string("buffers") ? "buffer "
+                                                                          : "image ") +
+                               std::to_string(i) + ": " + uri;
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(dir / decodeUri(uri), ec))
+                refuseFile(path, what + ": not found (looked beside the file)");
+        }
+    }
+}
+
 }  // namespace
 
 MeshFile loadGltf(const std::string& path, bool binary) {
+    if (!binary) requireNamedFiles(path);
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(decodeGltfImage, nullptr);
+    std::set<int> ktxImages;
+    loader.SetImageLoader(decodeGltfImage, &ktxImages);
     std::string error, warning;
     bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                      : loader.LoadASCIIFromFile(&model, &error, &warning, path);
     if (!ok) {
         std::replace(error.begin(), error.end(), '\n', ' ');
         while (!error.empty() && error.back() == ' ') error.pop_back();
+        // an image that would not decode: its own message, not "not a glTF file"
+        if (error.rfind(kImageError, 0) == 0) refuseFile(path, error);
         refuseFile(path, "not a glTF file tinygltf reads (" +
                              (error.empty() ? std::string("no reason given") : error) +
                              ")");
@@ -207,16 +269,23 @@ MeshFile loadGltf(const std::string& path, bool binary) {
     // becomes one decoded Texture, however many materials share it.
     std::map<int, int> textureOf;
     auto baseColorTexture = [&](int index, const std::string& material) -> int {
+        // `material`: "material leaf", or "material 3" for an unnamed one
         if (index < 0) return -1;
         auto [it, added] = textureOf.try_emplace(index, int(file.textures.size()));
         if (!added) return it->second;
-        std::string what =
-            "material " + material + ": base colour texture " + std::to_string(index);
+        std::string what = material + ": base colour texture " + std::to_string(index);
         if (size_t(index) >= model.textures.size())
             refuseFile(path, what + " does not exist");
         const tinygltf::Texture& texture = model.textures[index];
+        const char* noKtx =
+            "a KTX image, which RayGlass does not read (PNG and JPEG only)";
+        if (texture.source < 0 && texture.extensions.count("KHR_texture_basisu"))
+            refuseFile(path, what + " has only " + noKtx);
         if (texture.source < 0 || size_t(texture.source) >= model.images.size())
             refuseFile(path, what + " has no image");
+        if (ktxImages.count(texture.source))
+            refuseFile(path, what + ": image " + std::to_string(texture.source) + " is " +
+                                 noKtx);
         const tinygltf::Image& image = model.images[texture.source];
         if (image.image.size() != size_t(image.width) * image.height * 4)
             refuseFile(path, what + ": its image was not decoded");
@@ -248,7 +317,9 @@ MeshFile loadGltf(const std::string& path, bool binary) {
                        0.0, 1.0);
         f.ior = std::clamp(extensionNumber(m.extensions, "KHR_materials_ior", "ior", 1.5),
                            1.0, 10.0);
-        f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, f.name);
+        // an unnamed one is already "material N"
+        std::string label = m.name.empty() ? f.name : "material " + f.name;
+        f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, label);
         // KHR_materials_volume: a thicknessFactor above 0 makes a transmissive
         // material a volume (its value is for rasterizers: a ray tracer meets
         // the real thickness); without one it is thin-walled. The volume's
@@ -353,9 +424,14 @@ MeshFile loadGltf(const std::string& path, bool binary) {
                     // the mesh was recentred: its part puts it back
                     glm::dmat4 origin =
                         glm::translate(glm::dmat4(1.0), file.meshes[mesh].origin);
+                    std::string nodeName =
+                        "node " + std::to_string(n) +
+                        (node.name.empty() ? "" : " \"" + node.name + "\"");
                     file.parts.push_back({.mesh = uint32_t(mesh),
                                           .material = material,
-                                          .transform = transform * origin});
+                                          .transform = transform * origin,
+                                          .name = nodeName + ", primitive " +
+                                                  std::to_string(p)});
                 }
             }
             for (int child : node.children) visit(child, transform, depth + 1);

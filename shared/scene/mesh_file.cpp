@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -46,6 +47,12 @@ Texture decodeTexture(const std::string& name, const unsigned char* rgba, int wi
 std::string decodeImage(const unsigned char* bytes, int size, int& width, int& height,
                         std::vector<unsigned char>& rgba) {
     int channels = 0;
+    // KTX (KHR_texture_basisu's compressed textures) starts with its own
+    // identifier: say what it is rather than that it is no image
+    const unsigned char ktx[] = {0xAB, 'K', 'T', 'X', ' '};
+    if (size >= 5 && std::memcmp(bytes, ktx, sizeof ktx) == 0)
+        return "a KTX image, which RayGlass does not read (PNG and JPEG only: export "
+               "the textures as PNG or JPEG)";
     if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
         return stbi_failure_reason() ? stbi_failure_reason()
                                      : "not an image stb_image reads";

@@ -41,6 +41,9 @@ struct MeshPart {
     // gives such a part the format's default material)
     int material = -1;
     glm::dmat4 transform{1};  // the file's own placement (glTF node hierarchy)
+    // for messages: "node 3 \"Leaves\", primitive 0" (glTF), "faces of material
+    // glass" (OBJ)
+    std::string name;
 };
 
 struct MeshFile {

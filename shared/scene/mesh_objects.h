@@ -57,7 +57,8 @@ public:
     MeshFiles(const Reader& r, const std::string& scenePath, Scene& scene)
         : r_(r), path_(scenePath), scene_(scene) {}
 
-    void place(const std::string& name, const std::string& key,
+    // `entry`: the scene file's objects[entry], which `key` names
+    void place(const std::string& name, const std::string& key, uint32_t entry,
                const glm::dmat4& transform, bool moving,
                std::optional<uint32_t> material) {
         std::string file = findInput(r_, path_, name, key + ".file");
@@ -76,7 +77,11 @@ public:
                      .material = material ? *material : l.materials[part.material],
                      .moving = moving,
                      .transform = transform * part.transform,
-                     .mesh = l.firstMesh + part.mesh};
+                     .mesh = l.firstMesh + part.mesh,
+                     .entry = entry};
+            scene_.partNames.push_back(
+                std::filesystem::path(file).filename().string() + ": " + part.name);
+            o.part = uint32_t(scene_.partNames.size());
             const Mesh& mesh = *scene_.meshes[o.mesh];
             // glass needs a closed surface; a thin wall (Material::thin) does not
             const Material& glass = scene_.materials[o.material];

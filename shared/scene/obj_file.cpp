@@ -125,7 +125,12 @@ MeshFile loadObj(const std::string& path) {
                     {.name = path + (material >= 0
                                          ? ": material " + file.materials[material].name
                                          : "")});
-                file.parts.push_back({.mesh = it->second, .material = material});
+                file.parts.push_back(
+                    {.mesh = it->second,
+                     .material = material,
+                     .name = material >= 0
+                                 ? "faces of material " + file.materials[material].name
+                                 : "faces without a material"});
                 vertexOf.emplace_back();
             }
             Mesh& mesh = file.meshes[it->second];

@@ -83,6 +83,10 @@ struct Object {
     double radius = 1;       // spheres
     glm::dvec3 u{1, 0, 0}, v{0, 0, 1};  // quads: half-edges, the quad is center +- u +- v
     uint32_t mesh = 0;       // meshes: index into Scene::meshes
+    // Where it came from, for messages: the scene file's objects[entry], and
+    // which part of that entry (0: the entry itself; k: a spheres list's k-th
+    // sphere, or a mesh file's part Scene::partNames[k - 1]).
+    uint32_t entry = 0, part = 0;
 };
 
 struct Scene {
@@ -97,6 +101,9 @@ struct Scene {
     std::vector<std::shared_ptr<const Mesh>> meshes;
     // the meshes' base colour textures
     std::vector<std::shared_ptr<const Texture>> textures;
+    // what each placed mesh part is in its file, for messages (Object::part):
+    // "tree.gltf: node 3 \"Leaves\", primitive 0"
+    std::vector<std::string> partNames;
     // Camera rays ignore hits closer to the eye than this: 0 unless the eye
     // lies on a surface (eyeTmin in rules.cpp; docs/scene-format.md's rule 1).
     double eyeTmin = 0;
@@ -163,5 +170,9 @@ nlohmann::json cameraToJson(const Camera& camera, const glm::dvec3& origin);
 
 // The chapter's default scene: bin/assets/scenes/<name>.json.
 std::string defaultScenePath(const std::string& name);
+// An object as the scene file names it, for messages: "objects[3]", or for
+// a part of an entry "objects[3] (tree.gltf: node 5, primitive 0)" or
+// "objects[0] (sphere 12 of its data)".
+std::string describeObject(const Scene& scene, uint32_t index);
 
 }  // namespace rg

@@ -85,6 +85,15 @@ void readSphereList(const Reader& r, const json& o, const std::string& key,
 
 }  // namespace
 
+std::string describeObject(const Scene& scene, uint32_t index) {
+    const Object& o = scene.objects[index];
+    std::string entry = "objects[" + std::to_string(o.entry) + "]";
+    if (o.part == 0) return entry;
+    if (o.type == ShapeType::Mesh)
+        return entry + " (" + scene.partNames[o.part - 1] + ")";
+    return entry + " (sphere " + std::to_string(o.part - 1) + " of its data)";
+}
+
 std::string defaultScenePath(const std::string& name) {
     return (executableDir() / "assets" / "scenes" / (name + ".json")).string();
 }
@@ -312,13 +321,17 @@ Scene loadScene(const std::string& path) {
             std::optional<uint32_t> material;
             if (o.contains("material"))
                 material = materialIndex(o["material"], key + ".material");
-            meshFiles.place(r.string(o["file"], key + ".file"), key, place, moving,
-                            material);
+            meshFiles.place(r.string(o["file"], key + ".file"), key, uint32_t(i), place,
+                            moving, material);
             continue;
         // the compact form for big scenes: one material, many spheres
         } else if (type == "spheres") {
             r.onlyKeys(o, key, {"type", "material", "data"});
+            size_t first = s.objects.size();
             readSphereList(r, o, key, obj.material, s.objects);
+            for (size_t k = first; k < s.objects.size(); ++k)
+                s.objects[k].entry = uint32_t(i),
+                s.objects[k].part = uint32_t(k - first + 1);
             continue;
         } else {
             r.fail(key + ".type",
@@ -328,6 +341,7 @@ Scene loadScene(const std::string& path) {
             obj.transform =
                 readTransform(r, o["transform"], key + ".transform") * obj.transform;
         if (o.contains("moving")) obj.moving = r.boolean(o["moving"], key + ".moving");
+        obj.entry = uint32_t(i);
         s.objects.push_back(obj);
     }
     // [region coincident]
@@ -365,10 +379,9 @@ Scene loadScene(const std::string& path) {
         }
         s.objects[byShape[k]].hidden = true;
         if (++copies <= 3)
-            std::fprintf(
-                stderr,
-                "%s: objects[%u] coincides with objects[%u]; only the first is drawn\n",
-                path.c_str(), byShape[k], byShape[first]);
+            std::fprintf(stderr, "%s: %s coincides with %s; only the first is drawn\n",
+                         path.c_str(), describeObject(s, byShape[k]).c_str(),
+                         describeObject(s, byShape[first]).c_str());
     }
     if (copies > 3)
         std::fprintf(stderr, "%s: %zu more objects coincide with earlier ones\n",
