@@ -156,7 +156,12 @@ struct GpuMaterial {
                    // width, height (0: none), TEXTURE_* flags
     // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
     vec4 medium;
-    uvec4 flags;   // x: MATERIAL_* bits; y, z, w unused
+    uint flags;         // MATERIAL_* bits
+    // chapter 12, glTF's alphaMode MASK: hits whose alpha is below this do
+    // not count (0: every hit counts); alpha: baseColorFactor's, times the texture's
+    float alphaCutoff;
+    float alpha;
+    uint unused;        // the struct's size stays a multiple of 16 bytes
 };
 RG_SIZE(GpuMaterial, 128);
 #define MATERIAL_THIN 1u  // thin-walled transmission: crossed unbent (Material::thin)

@@ -251,6 +251,49 @@ TEST(Meshes, CoincidingPartsOfAFileAreNamedByTheirNodes) {
         << r.output;
 }
 
+// The any-hit shader's alpha test (glTF's alphaMode MASK): a leaf on a
+// transparent card (meshes/leaf.glb) with a round hole at its centre, before
+// a wall, lit from the upper right (assets/scenes/leaf.json). Checked against
+// geometry, at pixels found by projecting the card and the light by hand
+// (160x160, fov 40 degrees, camera at z = 4, card at z = 0, wall at z = -1.5,
+// light at (2.5, 1.5, 6)), and against the same scene without the leaf:
+// - through the hole the camera sees the wall as if the card were not there;
+// - the hole's shadow on the wall is lit, the leaf's is dark;
+// - the leaf itself is green; and the whole picture matches the reference.
+TEST(AlphaTest, ALeafOnACardCutsOutItsShapeForCameraAndShadowRays) {
+    std::string dir = rgtest::outputDir("12_alpha_test");
+    std::string scene = meshDir() + "/../scenes/leaf.json";
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--reference", "--scene", scene,
+                                                  "--width", "160", "--height", "160", "--frames", "1",
+                                                  "--output", dir + "/leaf.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto report = rgtest::readJson(dir + "/leaf.json");
+    EXPECT_EQ(report["alpha_test"], true);
+    EXPECT_EQ(report["validation_messages"], 0);
+    EXPECT_LE(report["error"]["frac_over_1_255"].get<double>(), 0.001);
+    // the same scene without the leaf (its second object)
+    auto json = nlohmann::json::parse(std::ifstream(scene));
+    json["objects"].erase(1);
+    writeText(dir + "/wall.json", json.dump());
+    rgtest::RunResult bare = rgtest::run(RG_EXE_12, {"--headless", "--scene", dir + "/wall.json", "--width",
+                                                     "160", "--height", "160", "--frames", "1", "--output",
+                                                     dir + "/no_leaf.png"});
+    ASSERT_EQ(bare.exitCode, 0) << bare.output;
+    rgtest::Png leaf = rgtest::readPng(dir + "/leaf.png"), wall = rgtest::readPng(dir + "/no_leaf.png");
+    auto same = [&](int x, int y) {
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(int(leaf.at(x, y)[c]) - int(wall.at(x, y)[c])) > 1) return false;
+        return true;
+    };
+    EXPECT_TRUE(same(80, 80)) << "the hole at the card's centre";
+    EXPECT_TRUE(same(55, 95)) << "the hole's shadow on the wall";
+    const uint8_t* shadow = leaf.at(83, 117);  // the leaf's shadow on the wall
+    EXPECT_LT(shadow[0], 0.7 * wall.at(83, 117)[0]);
+    const uint8_t* green = leaf.at(110, 104);  // the leaf, off its vein
+    EXPECT_GT(green[1], green[0] + 40);
+    EXPECT_GT(green[1], green[2] + 40);
+}
+
 // A mesh that names no material takes its format's default (glTF 2.0, 3.9.1:
 // "a default material MUST be used": base colour 1, metallic 1, roughness 1;
 // OBJ has none, a diffuse grey 0.8 stands in), and the scene says so once

@@ -17,6 +17,8 @@
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
 //                    embedded PNG) repeated 10 times each way, opaque and open
+//   leaf.glb         a leaf on a card: a square whose texture's alpha cuts the
+//                    leaf out (alphaMode MASK), with a round hole at its centre
 #include "core/files.h"
 #include "scene/mesh.h"
 
@@ -216,6 +218,18 @@ rg::Mesh torus(double major, double minor, int around, int across) {
 }
 
 // A floor tile's texture: two stones in a 2 x 2 checker with grout lines, 8-bit sRGB.
+// An image as PNG bytes (stb_image_write), to embed in a .glb.
+std::vector<unsigned char> encodePng(int width, int height, int channels, const std::vector<unsigned char>& pixels) {
+    std::vector<unsigned char> png;
+    auto append = [](void* context, void* data, int bytes) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + bytes);
+    };
+    if (!stbi_write_png_to_func(append, &png, width, height, channels, pixels.data(), width * channels))
+        throw std::runtime_error("cannot encode a PNG");
+    return png;
+}
+
 std::vector<unsigned char> tilePng(int size) {
     std::vector<unsigned char> rgb(size_t(size) * size * 3);
     for (int y = 0; y < size; ++y)
@@ -227,13 +241,30 @@ std::vector<unsigned char> tilePng(int size) {
             if (tx < grout || ty < grout) c[0] = c[1] = c[2] = 140;
             std::memcpy(&rgb[3 * (size_t(y) * size + x)], c, 3);
         }
-    std::vector<unsigned char> png;
-    auto append = [](void* context, void* data, int bytes) {
-        auto* out = static_cast<std::vector<unsigned char>*>(context);
-        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + bytes);
-    };
-    if (!stbi_write_png_to_func(append, &png, size, size, 3, rgb.data(), size * 3)) throw std::runtime_error("cannot encode a PNG");
-    return png;
+    return encodePng(size, size, 3, rgb);
+}
+
+// A leaf on a transparent card (chapter 12's alpha test): RGBA, green where
+// the leaf is (alpha 255), alpha 0 around it and in a round hole at its
+// centre (radius 0.15 of the card), so that a ray through the middle of the
+// card, and a shadow ray, pass.
+std::vector<unsigned char> leafPng(int size) {
+    std::vector<unsigned char> rgba(size_t(size) * size * 4);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double u = (x + 0.5) / size - 0.5, v = (y + 0.5) / size - 0.5;
+            // the leaf: an ellipse along the card's diagonal, with a vein
+            double a = (u + v) / std::sqrt(2.0), b = (u - v) / std::sqrt(2.0);
+            bool leaf = a * a / (0.46 * 0.46) + b * b / (0.2 * 0.2) <= 1;
+            bool hole = u * u + v * v <= 0.15 * 0.15;
+            bool vein = std::abs(b) < 0.012;
+            unsigned char* p = &rgba[4 * (size_t(y) * size + x)];
+            p[0] = vein ? 150 : 40;
+            p[1] = vein ? 190 : 140;
+            p[2] = vein ? 90 : 40;
+            p[3] = leaf && !hole ? 255 : 0;
+        }
+    return encodePng(size, size, 4, rgba);
 }
 
 // A square [-1, 1] x {0} x [-1, 1] facing up, its texture repeated `repeat` times each way.
@@ -378,6 +409,9 @@ int main(int argc, char** argv) {
                                 {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"metallicFactor", 0.0},
                                                           {"roughnessFactor", 0.9}}}};
         writeGltf(dir + "/tiles.glb", square(10), stone, true, tilePng(64));
+        nlohmann::json leaf = {{"name", "leaf"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true},
+                               {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}};
+        writeGltf(dir + "/leaf.glb", square(1), leaf, true, leafPng(128));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "make_meshes: %s\n", e.what());
         return 1;

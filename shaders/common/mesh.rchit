@@ -65,7 +65,7 @@ void main() {
         Floats uvs = Floats(mesh.texcoords);
         vec2 uv =
             w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
-        payload.radiance = sampleTexture(texture, uv);
+        payload.radiance = sampleTexture(texture, uv).rgb;
     }
     // [end]
 }

@@ -37,7 +37,7 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     float ior = m.params.w;
     // Entering: air into the glass; leaving: the ratio inverts. A thin wall
     // (MATERIAL_THIN) has air on both sides: from either, air into glass.
-    bool thin = (m.flags.x & MATERIAL_THIN) != 0u;
+    bool thin = (m.flags & MATERIAL_THIN) != 0u;
     Split s = entering || thin ? splitBetween(m, 1.0, ior, n, direction)
                                : splitBetween(m, ior, 1.0, n, direction);
     if (thin) s.eta = 1.0;  // crossed unbent
@@ -141,7 +141,7 @@ void growBranch() {
     // volume, KHR_materials_volume): the same medium on both sides. Fresnel
     // from that medium into the material's index, from either side; what
     // crosses goes on unbent, and no medium begins or ends.
-    bool thin = (m.flags.x & MATERIAL_THIN) != 0u;
+    bool thin = (m.flags & MATERIAL_THIN) != 0u;
     if (thin) n1 = mediumIor(currentMedium(b.media)), n2 = m.params.w;  // air: 1
     // [end]
     // [region media]

@@ -11,8 +11,8 @@ layout(location = 0) rayPayloadEXT HitPayload payload;
 
 // The closest hit along the ray into `payload` (a miss leaves the sky's radiance).
 void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax) {
-    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin,
-                tMin, direction, tMax, 0);
+    traceRayEXT(tlas, kRayFlags, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin, tMin,
+                direction, tMax, 0);
 }
 
 void traceClosest(vec3 origin, float tMin, vec3 direction) {

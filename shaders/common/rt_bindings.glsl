@@ -34,6 +34,14 @@ layout(constant_id = 1) const bool kAverages = true;
 layout(constant_id = 2) const bool kCarefulSizes = true;
 layout(constant_id = 3) const bool kCarefulShininess = true;
 // [end]
+// [region alpha_test]
+// Specialization constant 4 (rt_pipeline.h's alphaTest): true only for a
+// scene with an alpha-tested material (chapter 12's any-hit shader,
+// alpha.rahit). Else every ray is traced with the opaque flag, as before:
+// the traversal then never even looks for an any-hit shader.
+layout(constant_id = 4) const bool kAlphaTest = false;
+const uint kRayFlags = kAlphaTest ? gl_RayFlagsNoneEXT : gl_RayFlagsOpaqueEXT;
+// [end]
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 3.0e38;

@@ -53,7 +53,7 @@ bool lightVisible(vec3 origin, vec3 light) {
         64.0 * kUnitRoundoff * max(magnitude.x, max(magnitude.y, magnitude.z));
     shadowPayload = 1u;  // assume blocked until the miss shader says otherwise
     traceRayEXT(tlas,
-                gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT |
+                kRayFlags | gl_RayFlagsTerminateOnFirstHitEXT |
                     gl_RayFlagsSkipClosestHitShaderEXT,
                 0xFF,  // every instance can cast a shadow
                 RAY_TYPE_SHADOW,  // SBT offset: the shadow hit groups

@@ -25,15 +25,16 @@ int wrapTexel(int i, int n, uint mode) {
 }
 // [end]
 
-vec3 texel(uvec4 t, int x, int y) {
+vec4 texel(uvec4 t, int x, int y) {
     int w = int(t.y), h = int(t.z);
     x = wrapTexel(x, w, t.w & 3u);
     y = wrapTexel(y, h, (t.w >> TEXTURE_V_SHIFT) & 3u);
-    return texels[t.x + uint(y * w + x)].rgb;
+    return texels[t.x + uint(y * w + x)];
 }
 
 // [region sample]
-vec3 sampleTexture(uvec4 t, vec2 uv) {
+// Linear colour in rgb, and alpha (glTF: linear too) in a.
+vec4 sampleTexture(uvec4 t, vec2 uv) {
     float x = wrapCoordinate(uv.x, t.w & 3u) * float(t.y);
     float y = wrapCoordinate(uv.y, (t.w >> TEXTURE_V_SHIFT) & 3u) * float(t.z);
     if ((t.w & TEXTURE_NEAREST) != 0u) return texel(t, int(floor(x)), int(floor(y)));

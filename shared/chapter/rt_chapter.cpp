@@ -97,6 +97,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // [end]
         // Chapter 12's --triangles watertight: boxes, and triangle.rint in them.
         useTriangleTest(app.gpu, shaders, triangles);
+        // and an any-hit shader where a material is alpha-tested (glTF's MASK)
+        bool alphaTest = useAlphaTest(shaders, scene);
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
         // switch them on at any time, headless runs only from the start.
@@ -186,7 +188,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // the last frame's launches
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},
                                 {"parameters", params.values()},
-                                {"numerics", toJson(careful)}};
+                                {"numerics", toJson(careful)},
+                                {"alpha_test", alphaTest}};
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},
                                              {"pixels", rt.width * rt.height},

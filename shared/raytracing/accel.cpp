@@ -65,6 +65,8 @@ void accelBarrier(VkCommandBuffer cmd, VkPipelineStageFlags dstStage,
                          0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+}  // namespace
+
 // [region build_blas]
 // Builds one BLAS with PREFER_FAST_TRACE | ALLOW_COMPACTION, asks the GPU for
 // its compacted size, copies it into a structure of exactly that size and
@@ -152,11 +154,10 @@ AccelerationStructure buildCompactedBlas(
 }
 // [end]
 
-}  // namespace
 
 // [region unit_shapes]
 // A geometry of boxes, VkAabbPositionsKHR one after another in `boxes`.
-static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
+VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
     return {
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
         .geometryType = VK_GEOMETRY_TYPE_AABBS_KHR,
@@ -171,9 +172,9 @@ static VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
 }
 
 // Indexed triangles: float x, y, z vertices one after another, uint32 indices.
-static VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices,
-                                                           uint32_t maxVertex,
-                                                           const Buffer& indices) {
+VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices,
+                                                    uint32_t maxVertex,
+                                                    const Buffer& indices) {
     return {
         .sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR,
         .geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR,
@@ -242,49 +243,6 @@ UnitShapes buildUnitShapes(const Gpu& gpu, DeletionQueue& deletion, int sphereMe
     return shapes;
 }
 
-// [region mesh_blas]
-MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh,
-                       BlasStats& stats, TriangleTest test) {
-    // Read by the build (BUILD_INPUT) and by the closest-hit shader through
-    // its device address: one buffer serves both.
-    const VkBufferUsageFlags usage =
-        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-        VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    MeshBlas m{.triangles = uint32_t(mesh.indices.size() / 3)};
-    m.vertices = createDeviceBuffer(gpu, deletion, mesh.vertices.data(),
-                                    mesh.vertices.size() * sizeof(glm::vec3), usage);
-    m.indices = createDeviceBuffer(gpu, deletion, mesh.indices.data(),
-                                   mesh.indices.size() * sizeof(uint32_t), usage);
-    if (!mesh.normals.empty())
-        m.normals = createDeviceBuffer(gpu, deletion, mesh.normals.data(),
-                                       mesh.normals.size() * sizeof(glm::vec3), usage);
-    if (!mesh.texcoords.empty())
-        m.texcoords =
-            createDeviceBuffer(gpu, deletion, mesh.texcoords.data(),
-                               mesh.texcoords.size() * sizeof(glm::vec2), usage);
-    // Opaque, as every geometry here: no any-hit shader runs, the closest
-    // triangle is the hit. maxVertex: the highest index a triangle may use.
-    if (test == TriangleTest::Builtin) {
-        stats.geometry = "triangles";
-        m.blas = buildCompactedBlas(
-            gpu, deletion,
-            triangleGeometry(m.vertices, uint32_t(mesh.vertices.size() - 1), m.indices),
-            m.triangles, stats);
-        return m;
-    }
-    // --triangles watertight: boxes, needed only while the BLAS builds
-    DeletionQueue inputs;
-    std::vector<VkAabbPositionsKHR> boxes = triangleBoxes(mesh);
-    Buffer boxBuffer = createDeviceBuffer(
-        gpu, inputs, boxes.data(), boxes.size() * sizeof(VkAabbPositionsKHR),
-        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
-    stats.geometry = "triangle boxes";
-    m.blas =
-        buildCompactedBlas(gpu, deletion, aabbGeometry(boxBuffer), m.triangles, stats);
-    return m;
-}
-// [end]
 
 // [region transform]
 VkTransformMatrixKHR toVkTransform(const glm::dmat4& m) {
@@ -370,8 +328,12 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(
             .instanceShaderBindingTableRecordOffset = mesh >= 0 ? 2u
                                                       : sphere  ? 1u
                                                                 : 0u,
-            // both sides of every triangle
-            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR,
+            // both sides of every triangle; an alpha-tested mesh (chapter
+            // 12) not opaque, so that its any-hit shader runs
+            .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR |
+                     (mesh >= 0 && alphaTested(scene, o)
+                          ? VK_GEOMETRY_INSTANCE_FORCE_NO_OPAQUE_BIT_KHR
+                          : 0u),
             .accelerationStructureReference = mesh >= 0 ? shapes.meshes[mesh].blas.address
                                               : sphere  ? shapes.sphere.address
                                                         : shapes.quad.address,

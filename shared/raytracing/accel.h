@@ -26,6 +26,19 @@ struct BlasStats {
     double buildMs = 0, compactMs = 0;
 };
 
+// One BLAS of `geometry` (`primitiveCount` triangles or boxes), built and
+// compacted (chapter 03).
+AccelerationStructure buildCompactedBlas(
+    const Gpu& gpu, DeletionQueue& deletion,
+    const VkAccelerationStructureGeometryKHR& geometry, uint32_t primitiveCount,
+    BlasStats& stats);
+// What it is built from: boxes (VkAabbPositionsKHR one after another), or
+// indexed triangles (float x, y, z vertices, uint32 indices). Opaque.
+VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes);
+VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices,
+                                                    uint32_t maxVertex,
+                                                    const Buffer& indices);
+
 // Chapter 12: a triangle mesh on the GPU. The BLAS is built from the
 // vertex and index buffers, which stay: the closest-hit shader reads them
 // by their device addresses (barycentrics, smooth normals, texture coordinates).
@@ -110,6 +123,11 @@ glm::dvec4 groupSphere(const Object& o);  // world centre, radius
 SphereGroup buildSphereGroup(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                              const std::vector<uint32_t>& objects, uint32_t firstObject);
 
+// Chapter 12: whether `o`'s hits go through the any-hit shader's alpha test
+// (its material is alpha-tested: glTF's alphaMode MASK).
+inline bool alphaTested(const Scene& scene, const Object& o) {
+    return scene.materials[o.material].alphaCutoff > 0;
+}
 // The group's one instance (if it has spheres) first, then one per object.
 std::vector<VkAccelerationStructureInstanceKHR> makeInstances(
     const Scene& scene, const UnitShapes& shapes, const std::vector<uint32_t>& objects,

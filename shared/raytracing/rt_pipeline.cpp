@@ -16,17 +16,18 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
     p.layout =
         createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
-    // Specialization: the driver compiles each stage with constants 0-3
+    // Specialization: the driver compiles each stage with constants 0-4
     // fixed, so branches on them cost nothing (and no registers). One list
     // for every stage: an entry a shader does not declare is ignored.
-    uint32_t constants[4] = {shaders.raygenConstant, shaders.raygenAverages,
-                             shaders.carefulSizes, shaders.carefulShininess};
-    VkSpecializationMapEntry entries[4];
-    for (uint32_t id = 0; id < 4; ++id)
+    uint32_t constants[5] = {shaders.raygenConstant, shaders.raygenAverages,
+                             shaders.carefulSizes, shaders.carefulShininess,
+                             shaders.alphaTest};
+    VkSpecializationMapEntry entries[5];
+    for (uint32_t id = 0; id < 5; ++id)
         entries[id] = {.constantID = id,
                        .offset = id * uint32_t(sizeof(uint32_t)),
                        .size = sizeof(uint32_t)};
-    VkSpecializationInfo specialization{.mapEntryCount = 4,
+    VkSpecializationInfo specialization{.mapEntryCount = 5,
                                         .pMapEntries = entries,
                                         .dataSize = sizeof constants,
                                         .pData = constants};
@@ -63,6 +64,9 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
             hit.intersection.empty()
                 ? VK_SHADER_UNUSED_KHR
                 : addStage(VK_SHADER_STAGE_INTERSECTION_BIT_KHR, hit.intersection);
+        uint32_t rahit = hit.anyHit.empty()
+                             ? VK_SHADER_UNUSED_KHR
+                             : addStage(VK_SHADER_STAGE_ANY_HIT_BIT_KHR, hit.anyHit);
         groups.push_back(
             {.sType = VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR,
              .type = hit.intersection.empty()
@@ -70,7 +74,7 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
                          : VK_RAY_TRACING_SHADER_GROUP_TYPE_PROCEDURAL_HIT_GROUP_KHR,
              .generalShader = VK_SHADER_UNUSED_KHR,
              .closestHitShader = chit,
-             .anyHitShader = VK_SHADER_UNUSED_KHR,
+             .anyHitShader = rahit,
              .intersectionShader = rint});
     }
     VkRayTracingPipelineCreateInfoKHR info{

@@ -14,6 +14,7 @@ namespace rg {
 struct HitGroup {
     std::string closestHit;
     std::string intersection;
+    std::string anyHit;  // chapter 12's alpha test (alpha.rahit)
 };
 
 // The hit groups of every ray tracing chapter from 05 on: quad, sphere and
@@ -32,6 +33,9 @@ struct RtShaders {
     // huge or tiny sizes, or for huge exponents (rt_scene.h's carefulNumerics).
     uint32_t carefulSizes = 1;
     uint32_t carefulShininess = 1;
+    // Constant 4, kAlphaTest: 1 for a scene with an alpha-tested material
+    // (rays without the opaque flag, so that alpha.rahit runs where marked).
+    uint32_t alphaTest = 0;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder
@@ -55,7 +59,8 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
 // The stages that read the push constants (gpu::RtPush).
 constexpr VkShaderStageFlags kRtPushStages =
     VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR |
-    VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
+    VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR |
+    VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
 
 // Binds the pipeline and its set, pushes constants, traces one ray
 // generation invocation per pixel.

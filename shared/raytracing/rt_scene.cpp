@@ -147,7 +147,10 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
                       float(m.glass)),
             texture,
             glm::vec4(glm::vec3(m.absorption), float(m.priority)),
-            glm::uvec4(m.thin ? MATERIAL_THIN : 0u, 0u, 0u, 0u)};
+            m.thin ? MATERIAL_THIN : 0u,
+            float(m.alphaCutoff),
+            float(m.alpha),
+            0u};
 }
 
 // The scene's buffers and structures against the device's limits, before
@@ -216,6 +219,17 @@ void useTriangleTest(const Gpu& gpu, RtShaders& shaders, TriangleTest test) {
         shaders.hitGroups.at(group).intersection = "common/triangle.rint";
 }
 
+bool useAlphaTest(RtShaders& shaders, const Scene& scene) {
+    bool any = false;
+    for (const Object& o : scene.objects)
+        any = any || (o.type == ShapeType::Mesh && alphaTested(scene, o));
+    if (!any) return false;
+    shaders.alphaTest = 1;
+    for (uint32_t group : {HIT_GROUP_MESH, RAY_TYPE_SHADOW + HIT_GROUP_MESH})
+        shaders.hitGroups.at(group).anyHit = "common/alpha.rahit";
+    return true;
+}
+
 // [region layout]
 RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                     const Image& target, const SceneLayout& layout) {
@@ -276,7 +290,8 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     std::vector<glm::vec4> texels;  // chapter 12: every texture's, one after another
     for (const auto& t : scene.textures) {
         rt.firstTexel.push_back(uint32_t(texels.size()));
-        for (const glm::vec3& c : t->texels) texels.emplace_back(c, 1.0f);
+        for (size_t i = 0; i < t->texels.size(); ++i)
+            texels.emplace_back(t->texels[i], t->alpha.empty() ? 1.0f : t->alpha[i]);
     }
     std::vector<gpu::GpuMaterial> materials;
     for (const auto& m : scene.materials)
@@ -301,9 +316,11 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     rt.meshes = storage(gpu, deletion, meshes);
     // [end]
 
+    // every stage (the any-hit shader: chapter 12's alpha test)
     const VkShaderStageFlags rt_stages =
         VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR |
-        VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR;
+        VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR |
+        VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
     rt.descriptors = createDescriptorSet(
         gpu, deletion,
         {
@@ -318,11 +335,13 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
             {RT_BINDING_SKY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
             {RT_BINDING_RAY_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
              VK_SHADER_STAGE_RAYGEN_BIT_KHR},
-            // the closest hit, and --triangles watertight's intersection shader
+            // the closest hit, --triangles watertight's intersection shader
+            // and the alpha test's any-hit shader
             {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR},
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR |
+                 VK_SHADER_STAGE_ANY_HIT_BIT_KHR},
             {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR},
         });
     // [region tlas_descriptor]
     VkDescriptorSet set = rt.descriptors.set;

@@ -59,6 +59,12 @@ struct SceneLayout {
 // Throws InputError where the device cannot run it (no double in shaders).
 void useTriangleTest(const Gpu& gpu, RtShaders& shaders, TriangleTest test);
 
+// Chapter 12's alpha test: for a scene with an alpha-tested material (glTF's
+// alphaMode MASK) the mesh hit groups get the any-hit shader (alpha.rahit)
+// and constant 4 turns the rays' opaque flag off; makeInstances marks only
+// those instances not opaque. Returns whether it did.
+bool useAlphaTest(RtShaders& shaders, const Scene& scene);
+
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)
 // this scene needs, in the camera space of toCameraSpace:

@@ -186,11 +186,29 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
         else return;
         localNormal = o + t * d;
     } else if (obj.type == ShapeType::Mesh) {
-        TriangleHit h = intersectMesh(meshes_[obj.mesh], o, d, tMin, tMax);
+        const MeshData& mesh = meshes_[obj.mesh];
+        const Material& material = scene_.materials[obj.material];
+        // The texture coordinate at a point of a triangle.
+        auto uvAt = [&](uint32_t triangle, const glm::dvec3& w) {
+            const uint32_t* v = &mesh.indices[3 * triangle];
+            return w.x * mesh.texcoords[v[0]] + w.y * mesh.texcoords[v[1]] +
+                   w.z * mesh.texcoords[v[2]];
+        };
+        // Chapter 12's alpha test (alpha.rahit): a hit counts where the base
+        // colour's alpha reaches the cutoff.
+        HitFilter counts;
+        if (material.alphaCutoff > 0)
+            counts = [&](uint32_t triangle, const glm::dvec3& w) {
+                double alpha = material.alpha;
+                if (material.texture >= 0 && !mesh.texcoords.empty())
+                    alpha *= sampleAlpha(*scene_.textures[material.texture],
+                                         uvAt(triangle, w));
+                return alpha >= material.alphaCutoff;
+            };
+        TriangleHit h = intersectMesh(mesh, o, d, tMin, tMax, counts);
         if (h.t < 0) return;
         t = h.t;
         front = h.front;
-        const MeshData& mesh = meshes_[obj.mesh];
         const uint32_t* v = &mesh.indices[3 * h.triangle];
         localNormal = glm::cross(mesh.vertices[v[1]] - mesh.vertices[v[0]],
                                  mesh.vertices[v[2]] - mesh.vertices[v[0]]);
@@ -198,12 +216,9 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
             localShadingNormal = h.weights.x * mesh.normals[v[0]] +
                                  h.weights.y * mesh.normals[v[1]] +
                                  h.weights.z * mesh.normals[v[2]];
-        int texture = scene_.materials[obj.material].texture;
-        if (texture >= 0 && !mesh.texcoords.empty())
-            tint = sampleTexture(*scene_.textures[texture],
-                                 h.weights.x * mesh.texcoords[v[0]] +
-                                     h.weights.y * mesh.texcoords[v[1]] +
-                                     h.weights.z * mesh.texcoords[v[2]]);
+        if (material.texture >= 0 && !mesh.texcoords.empty())
+            tint = sampleTexture(*scene_.textures[material.texture],
+                                 uvAt(h.triangle, h.weights));
     } else {
         if (d.y == 0) return;  // parallel to the plane
         t = -o.y / d.y;
@@ -262,8 +277,8 @@ void ReferenceRenderer::buildBvh() {
 ReferenceRenderer::TriangleHit ReferenceRenderer::intersectMesh(const MeshData& mesh,
                                                                 const glm::dvec3& o,
                                                                 const glm::dvec3& d,
-                                                                double tMin,
-                                                                double tMax) {
+                                                                double tMin, double tMax,
+                                                                const HitFilter& counts) {
     // [region watertight]
     // Woop, Benthin and Wald 2013: shear space so that the ray is the +z
     // axis through the origin; then a triangle is hit when the origin lies
@@ -301,6 +316,7 @@ ReferenceRenderer::TriangleHit ReferenceRenderer::intersectMesh(const MeshData& 
         double az = sz * A[kz], bz = sz * B[kz], cz = sz * C[kz];
         double t = (u * az + v * bz + w * cz) / det;
         if (!(t > tMin && t < best.t)) return;
+        if (counts && !counts(tri, glm::dvec3(u, v, w) / det)) return;
         best = {t, tri, glm::dvec3(u, v, w) / det, det > 0};
         found = true;
     };
@@ -342,8 +358,8 @@ glm::dvec3 ReferenceRenderer::sky(const glm::dvec3& dir) const {
                     glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
 }
 
-glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture,
-                                            const glm::dvec2& uv) {
+// Linear rgb and alpha, as texture.glsl's sampleTexture.
+static glm::dvec4 sampleRgba(const Texture& texture, const glm::dvec2& uv) {
     auto wrap = [](double u, TextureWrap mode) {  // into [0, 1]
         if (mode == TextureWrap::Clamp) return std::clamp(u, 0.0, 1.0);
         if (mode == TextureWrap::Mirror)
@@ -356,7 +372,9 @@ glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture,
                                                  : std::clamp(x, 0L, w - 1);
         y = texture.wrapV == TextureWrap::Repeat ? ((y % h) + h) % h
                                                  : std::clamp(y, 0L, h - 1);
-        return glm::dvec3(texture.texels[size_t(y) * w + x]);
+        size_t i = size_t(y) * w + x;
+        return glm::dvec4(glm::dvec3(texture.texels[i]),
+                          texture.alpha.empty() ? 1.0 : texture.alpha[i]);
     };
     double x = wrap(uv.x, texture.wrapU) * texture.width,
            y = wrap(uv.y, texture.wrapV) * texture.height;
@@ -367,6 +385,15 @@ glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture,
     long ix = long(x0), iy = long(y0);
     return glm::mix(glm::mix(texel(ix, iy), texel(ix + 1, iy), fx),
                     glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx), fy);
+}
+
+glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture,
+                                            const glm::dvec2& uv) {
+    return glm::dvec3(sampleRgba(texture, uv));
+}
+
+double ReferenceRenderer::sampleAlpha(const Texture& texture, const glm::dvec2& uv) {
+    return sampleRgba(texture, uv).a;
 }
 
 Material ReferenceRenderer::hitMaterial(const ReferenceHit& hit) const {

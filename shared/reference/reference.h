@@ -91,6 +91,8 @@ public:
     // A base colour texture at a texture coordinate: the sampler's wrap, then
     // bilinear (or nearest) filtering, written again in double.
     static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv);
+    // Its alpha the same way (chapter 12's alpha test); 1 for an opaque image.
+    static double sampleAlpha(const Texture& texture, const glm::dvec2& uv);
     // The material of a hit, its ambient and diffuse colours times hit.tint.
     Material hitMaterial(const ReferenceHit& hit) const;
     // Through the point `offset` of pixel (x, y): (0.5, 0.5) its centre.
@@ -179,8 +181,12 @@ public:
     };
     // Watertight ray-triangle test (Woop, Benthin and Wald 2013, as PBRT-v4):
     // closest hit in (tMin, tMax) over the mesh's tree, in object space.
+    // `counts` (chapter 12's alpha test): a hit counts only if it says so,
+    // given the triangle and the weights.
+    using HitFilter = std::function<bool(uint32_t triangle, const glm::dvec3& weights)>;
     static TriangleHit intersectMesh(const MeshData& mesh, const glm::dvec3& o,
-                                     const glm::dvec3& d, double tMin, double tMax);
+                                     const glm::dvec3& d, double tMin, double tMax,
+                                     const HitFilter& counts = nullptr);
     const MeshData& meshData(uint32_t mesh) const { return meshes_[mesh]; }
 
 private:

@@ -309,6 +309,15 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         if (pbr.baseColorFactor.size() >= 3)
             f.baseColor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1],
                            pbr.baseColorFactor[2]};
+        if (pbr.baseColorFactor.size() == 4)
+            f.alpha = std::clamp(pbr.baseColorFactor[3], 0.0, 1.0);
+        using Alpha = FileMaterial::AlphaMode;
+        f.alphaMode = m.alphaMode == "MASK"    ? Alpha::Mask
+                      : m.alphaMode == "BLEND" ? Alpha::Blend
+                                               : Alpha::Opaque;
+        f.alphaCutoff = m.alphaCutoff;
+        if (!(f.alphaCutoff >= 0))
+            refuseFile(path, "material " + f.name + ": alphaCutoff is not >= 0");
         f.metallic = std::clamp(pbr.metallicFactor, 0.0, 1.0);
         f.roughness = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
         f.transmission =

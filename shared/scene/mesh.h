@@ -41,6 +41,9 @@ struct Texture {
     uint32_t width = 0, height = 0;
     // row-major, top row first, linear (decoded from sRGB)
     std::vector<glm::vec3> texels;
+    // the image's alpha, one per texel (linear, as glTF defines it); empty
+    // where every texel is opaque
+    std::vector<float> alpha;
     TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
     bool nearest = false;             // magnification NEAREST: no bilinear filter
 };

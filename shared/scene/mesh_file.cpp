@@ -40,6 +40,14 @@ Texture decodeTexture(const std::string& name, const unsigned char* rgba, int wi
     for (size_t i = 0; i < t.texels.size(); ++i)
         for (int c = 0; c < 3; ++c)
             t.texels[i][c] = float(srgbToLinear(rgba[4 * i + c] / 255.0));
+    bool opaque = true;
+    for (size_t i = 0; i < t.texels.size() && opaque; ++i)
+        opaque = rgba[4 * i + 3] == 255;
+    if (!opaque) {
+        t.alpha.resize(t.texels.size());
+        for (size_t i = 0; i < t.texels.size(); ++i)
+            t.alpha[i] = rgba[4 * i + 3] / 255.0f;
+    }
     return t;
 }
 // [end]

@@ -33,6 +33,13 @@ struct FileMaterial {
     double dispersion = 0;
     // index into MeshFile::textures (times baseColor), -1: none
     int baseColorTexture = -1;
+    // glTF's alpha (3.9.2 and 3.9.4): baseColorFactor's fourth number times
+    // the texture's alpha; alphaMode OPAQUE ignores it, MASK keeps a hit
+    // only where it is at least alphaCutoff, BLEND (read here as MASK at
+    // 0.5: chapter 12's page says why)
+    double alpha = 1;
+    enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
+    double alphaCutoff = 0.5;
 };
 
 struct MeshPart {

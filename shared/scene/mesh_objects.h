@@ -46,6 +46,12 @@ inline Material materialFromFile(const FileMaterial& f) {
     if (f.attenuationDistance > 0 && !m.thin)  // a thin wall holds no medium
         m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);
     m.dispersion = f.dispersion;  // ch 13
+    // ch 12: alpha-tested cut-outs (BLEND as MASK at its default cutoff)
+    if (f.alphaMode != FileMaterial::AlphaMode::Opaque) {
+        bool mask = f.alphaMode == FileMaterial::AlphaMode::Mask;
+        m.alphaCutoff = mask ? f.alphaCutoff : 0.5;
+        m.alpha = f.alpha;
+    }
     return m;
 }
 // [end]

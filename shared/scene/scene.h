@@ -55,6 +55,10 @@ struct Material {
     bool thin = false;
     // ch 12: a mesh file's base colour texture (Scene::textures), times ka and kd
     int texture = -1;
+    // ch 12, glTF's alphaMode MASK: a hit whose alpha (`alpha` times the
+    // texture's) is below alphaCutoff does not count; 0: every hit counts
+    double alphaCutoff = 0;
+    double alpha = 1;
     // Chapter 13, for a material that transmits: the medium inside it.
     // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
     glm::dvec3 absorption{0};
