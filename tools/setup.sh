@@ -27,7 +27,11 @@ done
 packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
           mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
-          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils python3-pil python3-numpy)
+          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils python3-pil python3-numpy
+          nodejs)
+# The Khronos glTF validator (a test runs it on every glTF file the project
+# writes): from the npm registry into .node/, a pinned version.
+gltf_validator=gltf-validator@2.0.0-dev.3.10
 min_mesa=24.1
 
 sudo_cmd=()
@@ -105,6 +109,12 @@ install_deps() {
 }
 
 install_deps
+if [ ! -f .node/node_modules/gltf-validator/package.json ]; then
+  # Debian's npm, unless a Node.js from elsewhere brought its own
+  command -v npm >/dev/null || "${sudo_cmd[@]}" apt-get install -y -q npm
+  echo "== npm: $gltf_validator into .node/"
+  npm install --prefix .node --no-audit --no-fund --loglevel=error "$gltf_validator" >/dev/null
+fi
 [ "$deps_only" -eq 1 ] && exit 0
 
 echo "== building in $build"
