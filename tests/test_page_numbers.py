@@ -60,6 +60,22 @@ CLAIMS = [
         "lavapipe": True,
     },
     {
+        "page": "12_triangle_meshes.md",
+        "pattern": r"at 800x450:\s+([0-9.]+) million rays a frame instead of",
+        "command": ["12_triangle_meshes", "--depth", "2"],
+        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
+        "tolerance": 0.01,
+        "lavapipe": True,
+    },
+    {
+        "page": "12_triangle_meshes.md",
+        "pattern": r"rays a frame instead of\s+([0-9.]+)\s+million",
+        "command": ["12_triangle_meshes"],
+        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
+        "tolerance": 0.01,
+        "lavapipe": True,
+    },
+    {
         "page": "13_real_glass.md",
         "pattern": r"this chapter traces ([0-9.]+) million\s+rays a frame",
         "command": ["13_real_glass", "--width", "800", "--height", "450"],
