@@ -58,12 +58,22 @@ if [ "$fresh" = 1 ] || [ ! -x "$root/usr/bin/apt-get" ]; then
   chmod +x "$root/usr/sbin/policy-rc.d"
 fi
 
+# The certificate authorities this machine adds to Debian's (a proxy's, say)
+# are trusted inside too, so that what reaches the network here (apt, npm)
+# reaches it there.
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  mkdir -p "$root/usr/local/share/ca-certificates"
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  chroot "$root" update-ca-certificates >/dev/null 2>&1 || true
+fi
+
 # The checkout's files, renewed; build folders inside the chroot stay.
 mkdir -p "$root/rayglass"
 find "$root/rayglass" -mindepth 1 -maxdepth 1 ! -name 'build*' ! -name out -exec rm -rf {} +
 git ls-files -z -co --exclude-standard | tar -c --null --ignore-failed-read -T - 2>/dev/null | tar -x -C "$root/rayglass"
 
 env_vars=(HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8
+          NODE_EXTRA_CA_CERTS=/etc/ssl/certs/ca-certificates.crt
           TERM="${TERM:-dumb}" CI="${CI:-}" RG_SANITIZE="${RG_SANITIZE:-}")
 exec unshare --mount --propagation private -- bash -c '
   set -e
