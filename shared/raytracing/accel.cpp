@@ -332,7 +332,7 @@ std::vector<VkAccelerationStructureInstanceKHR> makeInstances(
             // 12) not opaque, so that its any-hit shader runs
             .flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR |
                      (mesh >= 0 && alphaTested(scene, o)
-                          ? VK_GEOMETRY_INSTANCE_FORCE_NO_OPAQUE_BIT_KHR
+                          ? uint32_t(VK_GEOMETRY_INSTANCE_FORCE_NO_OPAQUE_BIT_KHR)
                           : 0u),
             .accelerationStructureReference = mesh >= 0 ? shapes.meshes[mesh].blas.address
                                               : sphere  ? shapes.sphere.address
