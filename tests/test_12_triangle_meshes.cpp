@@ -294,6 +294,22 @@ TEST(AlphaTest, ALeafOnACardCutsOutItsShapeForCameraAndShadowRays) {
     EXPECT_GT(green[1], green[2] + 40);
 }
 
+// The same rule's message for a `spheres` list (scene-format, rule 2): a
+// sphere of the list is named by its place in the list's data.
+TEST(Meshes, CoincidingSpheresOfAListAreNamedByTheirPlace) {
+    std::string dir = rgtest::outputDir("12_coinciding_spheres");
+    writeText(dir + "/list.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+        "materials": {"m": {}},
+        "objects": [{"type": "sphere", "material": "m", "center": [1, 0, 0], "radius": 0.5},
+                    {"type": "spheres", "material": "m", "data": [0, 0, 0, 0.5, 2, 0, 0, 0.5, 1, 0, 0, 0.5]}]})");
+    rgtest::RunResult r = rgtest::run(RG_EXE_05, {"--headless", "--scene", dir + "/list.json", "--width", "16",
+                                                  "--height", "16", "--frames", "1", "--output", dir + "/out.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("objects[1] (sphere 2 of its data) coincides with objects[0]; only the first is drawn"),
+              std::string::npos)
+        << r.output;
+}
+
 // A mesh that names no material takes its format's default (glTF 2.0, 3.9.1:
 // "a default material MUST be used": base colour 1, metallic 1, roughness 1;
 // OBJ has none, a diffuse grey 0.8 stands in), and the scene says so once
