@@ -62,10 +62,7 @@ void main() {
     payload.radiance = vec3(1.0);
     uvec4 texture = materials[object.material].texture;
     if (texture.z != 0u && mesh.texcoords != uvec2(0u)) {
-        Floats uvs = Floats(mesh.texcoords);
-        vec2 uv =
-            w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
-        payload.radiance = sampleTexture(texture, uv).rgb;
+        payload.radiance = sampleTexture(texture, texcoordAt(mesh, v, w)).rgb;
     }
     // [end]
 }

@@ -24,6 +24,12 @@ vec2 vec2At(Floats data, uint vertex) {
 }
 // [end]
 
+// The texture coordinate at the point of triangle v with barycentric weights w.
+vec2 texcoordAt(GpuMesh mesh, uvec3 v, vec3 w) {
+    Floats uvs = Floats(mesh.texcoords);
+    return w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
+}
+
 // The three vertex indices of triangle `triangle` of `mesh`.
 uvec3 triangleAt(GpuMesh mesh, uint triangle) {
     Indices indices = Indices(mesh.indices);

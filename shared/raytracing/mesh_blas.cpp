@@ -28,8 +28,9 @@ MeshBlas buildMeshBlas(const Gpu& gpu, DeletionQueue& deletion, const Mesh& mesh
         m.texcoords =
             createDeviceBuffer(gpu, deletion, mesh.texcoords.data(),
                                mesh.texcoords.size() * sizeof(glm::vec2), usage);
-    // Opaque, as every geometry here: no any-hit shader runs, the closest
-    // triangle is the hit. maxVertex: the highest index a triangle may use.
+    // Opaque, as every geometry here: the closest triangle is the hit (an
+    // alpha-tested instance alone turns that off: makeInstances).
+    // maxVertex: the highest index a triangle may use.
     if (test == TriangleTest::Builtin) {
         stats.geometry = "triangles";
         m.blas = buildCompactedBlas(
