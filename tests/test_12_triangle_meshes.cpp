@@ -785,6 +785,9 @@ TEST(Watertight, BothTrianglesTestsDrawTheSamePicture) {
                         break;
                     }
         EXPECT_LE(differ, a.width * a.height / 1000) << chapter;
+        // page 12: on lavapipe, whose test leaks at no pixel of these scenes, none at all
+        std::string device = rgtest::readJson(dir + "/" + chapter + "_builtin.json")["device"];
+        if (device.find("llvmpipe") != std::string::npos) EXPECT_EQ(differ, 0) << chapter;
     }
 }
 
