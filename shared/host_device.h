@@ -162,9 +162,19 @@ struct GpuMaterial {
     float alphaCutoff;
     float alpha;
     uint unused;        // the struct's size stays a multiple of 16 bytes
+    // chapter 12, glTF's metal-roughness model where a texture varies it per
+    // hit (MATERIAL_METAL_ROUGH): baseColorFactor (rgb), metallicFactor
+    vec4 baseColor;
+    // roughnessFactor, the normal texture's scale, unused, unused
+    vec4 factors;
+    uvec4 metalRoughTexture;  // as `texture`: roughness in G, metalness in B (linear)
+    uvec4 normalTexture;      // as `texture`: tangent-space normals (linear)
 };
-RG_SIZE(GpuMaterial, 128);
+RG_SIZE(GpuMaterial, 192);
 #define MATERIAL_THIN 1u  // thin-walled transmission: crossed unbent (Material::thin)
+// chapter 12: a metal-roughness texture; hitMaterial redoes the glTF
+// mapping (Material::metalRough) at each hit
+#define MATERIAL_METAL_ROUGH 2u
 // [end]
 
 // GpuMaterial::texture.w: how each axis wraps (glTF's samplers), and the filter.

@@ -17,6 +17,8 @@
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
 //                    embedded PNG) repeated 10 times each way, opaque and open
+//   panel.glb        a painted metal panel: base colour, metal-roughness and normal
+//                    textures (a window of bare metal, rivets, a raised rim)
 //   leaf.glb         a leaf on a card: a square whose texture's alpha cuts the
 //                    leaf out (alphaMode MASK), with a round hole at its centre
 #include "core/files.h"
@@ -267,6 +269,53 @@ std::vector<unsigned char> leafPng(int size) {
     return encodePng(size, size, 4, rgba);
 }
 
+// A material's texture: its slot ("baseColorTexture", "metallicRoughnessTexture", "normalTexture") and PNG.
+struct TextureImage {
+    std::string slot;
+    std::vector<unsigned char> png;
+};
+
+// A painted metal panel (chapter 12's metal-roughness and normal textures), three
+// images of size x size over the texture square: red paint (rough, not metal) with a
+// round window of bare metal (radius 0.3 about the centre), polished in its left half
+// and brushed (roughness 0.05) in its right; eight rivets and a raised rim round the
+// window, in the normal texture only (the panel stays flat).
+double panelHeight(double u, double v) {  // the relief the normal texture encodes, in texture units
+    double du = u - 0.5, dv = v - 0.5, r = std::sqrt(du * du + dv * dv);
+    double h = 0.0;
+    double rim = std::abs(r - 0.315) / 0.015;  // a rounded rim, 0.03 wide
+    if (rim < 1) h = std::max(h, 0.01 * std::sqrt(1 - rim * rim));
+    for (int k = 0; k < 8; ++k) {  // rivets of radius 0.03 on a circle of 0.41
+        double a = k * kPi / 4, x = u - 0.5 - 0.41 * std::cos(a), y = v - 0.5 - 0.41 * std::sin(a);
+        double q = (x * x + y * y) / (0.03 * 0.03);
+        if (q < 1) h = std::max(h, 0.03 * std::sqrt(1 - q));
+    }
+    return h;
+}
+std::vector<TextureImage> panelImages(int size) {
+    std::vector<unsigned char> colour(size_t(size) * size * 3), metalRough(colour.size()), normal(colour.size());
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double u = (x + 0.5) / size, v = (y + 0.5) / size;
+            bool metal = std::hypot(u - 0.5, v - 0.5) < 0.3;
+            unsigned char* c = &colour[3 * (size_t(y) * size + x)];
+            c[0] = metal ? 200 : 170, c[1] = metal ? 200 : 30, c[2] = metal ? 205 : 25;
+            unsigned char* mr = &metalRough[3 * (size_t(y) * size + x)];
+            mr[0] = 255;  // R: occlusion in glTF's packing, not read
+            mr[1] = metal ? (u < 0.5 ? 0 : 13) : 140;  // G: roughness 0, 0.05, 0.55
+            mr[2] = metal ? 255 : 0;                   // B: metalness
+            // the relief's slope by central differences; +y of the normal is the image's up (-v)
+            double e = 1.0 / size;
+            double dhdu = (panelHeight(u + e, v) - panelHeight(u - e, v)) / (2 * e);
+            double dhdv = (panelHeight(u, v + e) - panelHeight(u, v - e)) / (2 * e);
+            glm::dvec3 n = glm::normalize(glm::dvec3(-dhdu, dhdv, 1));
+            for (int k = 0; k < 3; ++k) normal[3 * (size_t(y) * size + x) + k] = (unsigned char)std::lround((n[k] + 1) / 2 * 255);
+        }
+    return {{"baseColorTexture", encodePng(size, size, 3, colour)},
+            {"metallicRoughnessTexture", encodePng(size, size, 3, metalRough)},
+            {"normalTexture", encodePng(size, size, 3, normal)}};
+}
+
 // A square [-1, 1] x {0} x [-1, 1] facing up, its texture repeated `repeat` times each way.
 rg::Mesh square(float repeat) {
     rg::Mesh m;
@@ -278,9 +327,9 @@ rg::Mesh square(float repeat) {
 }
 
 // glTF 2.0: one mesh, one node, one material; the buffer beside (.gltf + .bin) or inside (.glb).
-// With texture coordinates and a PNG, the material's base colour texture is that image.
+// With texture coordinates, each image becomes the material's texture in its slot (embedded PNGs).
 void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json material, bool binary,
-               const std::vector<unsigned char>& png = {}) {
+               const std::vector<TextureImage>& images = {}) {
     std::vector<unsigned char> bin;
     auto append = [&](const void* data, size_t bytes) {
         const auto* b = static_cast<const unsigned char*>(data);
@@ -295,8 +344,11 @@ void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json materi
     append(m.indices.data(), iBytes);
     size_t tOffset = bin.size(), tBytes = m.texcoords.size() * 8;
     append(m.texcoords.data(), tBytes);
-    size_t pOffset = bin.size(), pBytes = png.size();
-    append(png.data(), pBytes);
+    std::vector<std::pair<size_t, size_t>> pngs;  // offset, bytes
+    for (const TextureImage& image : images) {
+        pngs.emplace_back(bin.size(), image.png.size());
+        append(image.png.data(), image.png.size());
+    }
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const glm::vec3& v : m.vertices) lo = glm::min(lo, v), hi = glm::max(hi, v);
     std::string binName = path.substr(path.find_last_of('/') + 1);
@@ -326,12 +378,14 @@ void writeGltf(const std::string& path, const rg::Mesh& m, nlohmann::json materi
         j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", tOffset}, {"byteLength", tBytes}, {"target", 34962}});
         j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", m.texcoords.size()}, {"type", "VEC2"}});
     }
-    if (!png.empty()) {
-        j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", pOffset}, {"byteLength", pBytes}});
-        j["images"] = {{{"bufferView", j["bufferViews"].size() - 1}, {"mimeType", "image/png"}}};
+    for (size_t i = 0; i < images.size(); ++i) {
+        j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", pngs[i].first}, {"byteLength", pngs[i].second}});
+        j["images"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
         j["samplers"] = {{{"magFilter", 9729}, {"wrapS", 10497}, {"wrapT", 10497}}};  // linear, repeat
-        j["textures"] = {{{"source", 0}, {"sampler", 0}}};
-        j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+        j["textures"].push_back({{"source", i}, {"sampler", 0}});
+        const std::string& slot = images[i].slot;
+        nlohmann::json& owner = slot == "normalTexture" ? j["materials"][0] : j["materials"][0]["pbrMetallicRoughness"];
+        owner[slot]["index"] = i;  // beside what the material gives (a normal texture's scale)
     }
     if (!binary) {
         rg::writeFileAtomically(path.substr(0, path.find_last_of('/') + 1) + binName, bin.data(), bin.size());
@@ -408,10 +462,14 @@ int main(int argc, char** argv) {
         nlohmann::json stone = {{"name", "stone tiles"},
                                 {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"metallicFactor", 0.0},
                                                           {"roughnessFactor", 0.9}}}};
-        writeGltf(dir + "/tiles.glb", square(10), stone, true, tilePng(64));
+        writeGltf(dir + "/tiles.glb", square(10), stone, true, {{"baseColorTexture", tilePng(64)}});
         nlohmann::json leaf = {{"name", "leaf"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true},
                                {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}};
-        writeGltf(dir + "/leaf.glb", square(1), leaf, true, leafPng(128));
+        nlohmann::json panel = {{"name", "painted metal"},
+                                {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 1.0}}},
+                                {"normalTexture", {{"scale", 1.0}}}};
+        writeGltf(dir + "/panel.glb", square(1), panel, true, panelImages(256));
+        writeGltf(dir + "/leaf.glb", square(1), leaf, true, {{"baseColorTexture", leafPng(128)}});
     } catch (const std::exception& e) {
         std::fprintf(stderr, "make_meshes: %s\n", e.what());
         return 1;

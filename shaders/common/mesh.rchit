@@ -18,6 +18,37 @@
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and third vertex
 
+// [region normal_texture]
+// glTF's normal texture (3.9.3): a normal in the tangent space of the
+// surface, x along the texture's u, y toward the image's top (-v), z the
+// shading normal. Without TANGENT attributes (not read) the tangent is the
+// triangle's own direction of growing u, made perpendicular to the shading
+// normal; the bitangent's sign follows the texture's handedness (mirrored
+// coordinates flip it).
+vec3 normalFromTexture(GpuMaterial material, GpuMesh mesh, uvec3 v, vec3 a, vec3 b,
+                       vec3 c, vec2 uv) {
+    Floats uvs = Floats(mesh.texcoords);
+    vec2 ta = vec2At(uvs, v.x), d1 = vec2At(uvs, v.y) - ta, d2 = vec2At(uvs, v.z) - ta;
+    float det = d1.x * d2.y - d2.x * d1.y;
+    if (det == 0.0) return payload.shading;  // no texture space on this triangle
+    vec3 e1 = b - a, e2 = c - a;
+    // dP/du and dP/dv in object space, then world (tangents go as points do)
+    vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det, dpdv = (e2 * d1.x - e1 * d2.x) / det;
+    dpdu = mat3(gl_ObjectToWorldEXT) * dpdu;
+    dpdv = mat3(gl_ObjectToWorldEXT) * dpdv;
+    vec3 n = payload.shading;
+    vec3 t = dpdu - n * dot(n, dpdu);
+    if (dot(t, t) == 0.0) return n;
+    t = normalize(t);
+    vec3 bt = cross(n, t);
+    if (dot(bt, -dpdv) < 0.0) bt = -bt;  // mirrored texture coordinates
+    vec3 texel = sampleTexture(material.normalTexture, uv).rgb * 2.0 - 1.0;
+    texel.xy *= material.factors.y;  // the normal texture's scale
+    vec3 mapped = texel.x * t + texel.y * bt + texel.z * n;
+    return dot(mapped, mapped) > 0.0 ? normalize(mapped) : n;
+}
+// [end]
+
 // [region closest_hit]
 void main() {
     GpuObject object = objects[gl_InstanceCustomIndexEXT];
@@ -56,14 +87,24 @@ void main() {
     payload.error = hitError(magnitude, gl_ObjectToWorldEXT, payload.normal);
     payload.object = gl_InstanceCustomIndexEXT;
     // [region base_colour]
-    // On a hit the payload's radiance is free: it brings the base colour
-    // texture's value back, and hitMaterial (raygen_common.glsl) multiplies
-    // the material's ambient and diffuse colours by it.
-    payload.radiance = vec3(1.0);
-    uvec4 texture = materials[object.material].texture;
-    if (texture.z != 0u && mesh.texcoords != uvec2(0u)) {
-        payload.radiance = sampleTexture(texture, texcoordAt(mesh, v, w)).rgb;
+    // On a hit the payload's radiance is free: it brings the textures'
+    // values back (payload.glsl), and hitMaterial (raygen_common.glsl) makes
+    // the hit's material of them.
+    HitTextures h = HitTextures(vec3(1.0), 1.0, 1.0);
+    GpuMaterial material = materials[object.material];
+    if (mesh.texcoords != uvec2(0u)) {
+        vec2 uv = texcoordAt(mesh, v, w);
+        if (material.texture.z != 0u)
+            h.baseColor = sampleTexture(material.texture, uv).rgb;
+        if (material.metalRoughTexture.z != 0u) {
+            vec4 mr = sampleTexture(material.metalRoughTexture, uv);
+            h.roughness = mr.g;
+            h.metalness = mr.b;
+        }
+        if (material.normalTexture.z != 0u)
+            payload.shading = normalFromTexture(material, mesh, v, a, b, c, uv);
     }
+    payload.radiance = packHitTextures(h);
     // [end]
 }
 // [end]

@@ -36,16 +36,39 @@ vec3 facingShading(vec3 shading, vec3 normal, vec3 direction) {
 }
 // [end]
 
+// [region metal_roughness]
+// glTF's metal-roughness model at one hit, as shared/scene/rules.cpp's
+// applyMetalRoughness sets it up for a whole material (chapter 12).
+void applyMetalRoughness(inout GpuMaterial m, vec3 baseColor, float metallic,
+                         float roughness) {
+    float transmission = m.params.z;
+    m.kd.rgb = baseColor * ((1.0 - metallic) * (1.0 - transmission));
+    m.ka.rgb = m.kd.rgb;
+    float alpha = max(roughness * roughness, 1e-3);
+    m.params.x = min(1e6, max(1.0, 2.0 / (alpha * alpha) - 2.0));  // shininess
+    m.ks.rgb = vec3(0.04 * (1.0 - roughness));
+    m.params.y = metallic * (1.0 - transmission);                   // reflectivity
+    m.extra.y = transmission > 0.0 ? 0.0 : roughness * metallic;    // rough lobe
+}
+// [end]
+
 // [region hit_material]
 // The material of what the last trace hit. On a mesh, mesh.rchit brought
-// back its base colour texture's value in the payload's radiance (1 where
-// there is none), which tints the ambient and diffuse colours (chapter 12).
+// back its textures' values in the payload's radiance (payload.glsl): the
+// base colour tints the ambient and diffuse colours; a metal-roughness
+// texture varies the whole material (chapter 12).
 GpuMaterial hitMaterial() {
     GpuObject o = objects[payload.object];
     GpuMaterial m = materials[o.material];
     if (o.shape == SHAPE_MESH) {
-        m.ka.rgb *= payload.radiance;
-        m.kd.rgb *= payload.radiance;
+        HitTextures h = unpackHitTextures(payload.radiance);
+        if ((m.flags & MATERIAL_METAL_ROUGH) != 0u) {
+            applyMetalRoughness(m, m.baseColor.rgb * h.baseColor,
+                                m.baseColor.w * h.metalness, m.factors.x * h.roughness);
+        } else {
+            m.ka.rgb *= h.baseColor;
+            m.kd.rgb *= h.baseColor;
+        }
     }
     return m;
 }

@@ -13,6 +13,19 @@
 
 namespace rg {
 
+// A material's shininess; where a metal-roughness texture varies it
+// (chapter 12), that of its smoothest texel.
+static double highestShininess(const Material& m, const Scene& scene) {
+    if (m.metalRough.texture < 0) return m.shininess;
+    float g = 1;  // roughness: the texture's G
+    for (const glm::vec3& t : scene.textures[m.metalRough.texture]->texels)
+        g = std::min(g, t.g);
+    Material smoothest = m;
+    applyMetalRoughness(smoothest, m.metalRough.baseColor, m.metalRough.metallic,
+                        m.metalRough.roughness * g, m.transmission);
+    return smoothest.shininess;
+}
+
 // [region needs_careful_rule]
 CarefulNumerics needsCarefulNumerics(const Scene& scene) {
     // Near its surface a sphere's quadratic rounds by about 2^-24 of its
@@ -22,7 +35,7 @@ CarefulNumerics needsCarefulNumerics(const Scene& scene) {
     const double kRatio = 1024.0, kSmallest = 1e-8, kLargest = 1e8;
     CarefulNumerics careful{.sizes = false, .shininess = false};
     for (const Material& m : scene.materials)
-        careful.shininess = careful.shininess || m.shininess >= 1e4;
+        careful.shininess = careful.shininess || highestShininess(m, scene) >= 1e4;
     // an ellipsoid's longest semi-axis over its shortest: past this, o + t d
     // in its object space loses the digits of its thin axis (sphere.rint)
     const double kSquash = 64.0;
@@ -125,19 +138,22 @@ std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
 
 gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
                                const std::vector<uint32_t>& firstTexel) {
-    glm::uvec4 texture(0);
-    // chapter 12: where its texels are, its size, and how it wraps and filters
-    if (m.texture >= 0) {
-        const Texture& t = *scene.textures[m.texture];
+    // chapter 12: where a texture's texels are, its size, and how it wraps
+    // and filters; (0, 0, 0, 0) for none
+    auto texture = [&](int index) {
+        if (index < 0) return glm::uvec4(0);
+        const Texture& t = *scene.textures[index];
         auto wrap = [](TextureWrap w) {
             return w == TextureWrap::Clamp    ? TEXTURE_WRAP_CLAMP
                    : w == TextureWrap::Mirror ? TEXTURE_WRAP_MIRROR
                                               : TEXTURE_WRAP_REPEAT;
         };
-        texture = {firstTexel[m.texture], t.width, t.height,
-                   wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT |
-                       (t.nearest ? TEXTURE_NEAREST : 0u)};
-    }
+        return glm::uvec4(firstTexel[index], t.width, t.height,
+                          wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT |
+                              (t.nearest ? TEXTURE_NEAREST : 0u));
+    };
+    const Material::MetalRoughness& mr = m.metalRough;
+    bool perHit = mr.texture >= 0;  // hitMaterial redoes the mapping
     return {v4(m.ka),
             v4(m.kd),
             v4(m.ks),
@@ -145,12 +161,16 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
                       float(m.ior)),
             glm::vec4(float(m.f0), float(m.roughness), float(m.dispersion / 20),
                       float(m.glass)),
-            texture,
+            texture(m.texture),
             glm::vec4(glm::vec3(m.absorption), float(m.priority)),
-            m.thin ? MATERIAL_THIN : 0u,
+            (m.thin ? MATERIAL_THIN : 0u) | (perHit ? MATERIAL_METAL_ROUGH : 0u),
             float(m.alphaCutoff),
             float(m.alpha),
-            0u};
+            0u,
+            glm::vec4(glm::vec3(mr.baseColor), float(mr.metallic)),
+            glm::vec4(float(mr.roughness), float(m.normalScale), 0, 0),
+            texture(mr.texture),
+            texture(m.normalTexture)};
 }
 
 // The scene's buffers and structures against the device's limits, before

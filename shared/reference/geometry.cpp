@@ -1,6 +1,6 @@
 // The reference's geometry (chapters 03-04, 12): its own sphere, quad and
-// watertight triangle tests in double, its BVH, the camera's rays, the sky
-// and textures.
+// watertight triangle tests in double, its BVH, the camera's rays and the
+// sky (a mesh's textures: textures.cpp).
 #include "reference/reference.h"
 
 #include "core/display.h"
@@ -176,8 +176,9 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
     // t is the same in both spaces
     glm::dvec3 d = glm::dvec3(inv * glm::dvec4(direction, 0.0));
     double t = -1;
-    glm::dvec3 localNormal, localShadingNormal(0), tint(1);
+    glm::dvec3 localNormal, localShadingNormal(0);
     bool front = true;
+    TriangleHit h;  // a mesh's
     if (obj.type == ShapeType::Sphere) {
         double t0, t1;
         if (!referenceUnitSphere(o, d, t0, t1)) return;
@@ -205,7 +206,7 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
                                          uvAt(triangle, w));
                 return alpha >= material.alphaCutoff;
             };
-        TriangleHit h = intersectMesh(mesh, o, d, tMin, tMax, counts);
+        h = intersectMesh(mesh, o, d, tMin, tMax, counts);
         if (h.t < 0) return;
         t = h.t;
         front = h.front;
@@ -216,9 +217,6 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
             localShadingNormal = h.weights.x * mesh.normals[v[0]] +
                                  h.weights.y * mesh.normals[v[1]] +
                                  h.weights.z * mesh.normals[v[2]];
-        if (material.texture >= 0 && !mesh.texcoords.empty())
-            tint = sampleTexture(*scene_.textures[material.texture],
-                                 uvAt(h.triangle, h.weights));
     } else {
         if (d.y == 0) return;  // parallel to the plane
         t = -o.y / d.y;
@@ -236,7 +234,9 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
     if (glm::dot(shading, shading) > 0) best.shading = glm::normalize(shading);
     best.frontFace =
         obj.type == ShapeType::Quad ? glm::dot(best.normal, direction) < 0 : front;
-    best.tint = tint;
+    best.tint = glm::dvec3(1);
+    best.roughnessTexel = best.metalnessTexel = 1;
+    if (obj.type == ShapeType::Mesh) textureHit(obj, h.triangle, h.weights, best);
     best.error = kRounding * (maxMagnitude(origin) +
                               std::abs(t) * maxMagnitude(direction) + objectSize_[i]);
 }
@@ -356,51 +356,6 @@ glm::dvec3 ReferenceRenderer::sky(const glm::dvec3& dir) const {
     long x0 = long(fx0), y0 = long(fy0);
     return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
                     glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
-}
-
-// Linear rgb and alpha, as texture.glsl's sampleTexture.
-static glm::dvec4 sampleRgba(const Texture& texture, const glm::dvec2& uv) {
-    auto wrap = [](double u, TextureWrap mode) {  // into [0, 1]
-        if (mode == TextureWrap::Clamp) return std::clamp(u, 0.0, 1.0);
-        if (mode == TextureWrap::Mirror)
-            return 1 - std::abs(u - 2 * std::floor(u / 2) - 1);
-        return u - std::floor(u);
-    };
-    auto texel = [&](long x, long y) {
-        long w = texture.width, h = texture.height;
-        x = texture.wrapU == TextureWrap::Repeat ? ((x % w) + w) % w
-                                                 : std::clamp(x, 0L, w - 1);
-        y = texture.wrapV == TextureWrap::Repeat ? ((y % h) + h) % h
-                                                 : std::clamp(y, 0L, h - 1);
-        size_t i = size_t(y) * w + x;
-        return glm::dvec4(glm::dvec3(texture.texels[i]),
-                          texture.alpha.empty() ? 1.0 : texture.alpha[i]);
-    };
-    double x = wrap(uv.x, texture.wrapU) * texture.width,
-           y = wrap(uv.y, texture.wrapV) * texture.height;
-    if (texture.nearest) return texel(long(std::floor(x)), long(std::floor(y)));
-    x -= 0.5;
-    y -= 0.5;
-    double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
-    long ix = long(x0), iy = long(y0);
-    return glm::mix(glm::mix(texel(ix, iy), texel(ix + 1, iy), fx),
-                    glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx), fy);
-}
-
-glm::dvec3 ReferenceRenderer::sampleTexture(const Texture& texture,
-                                            const glm::dvec2& uv) {
-    return glm::dvec3(sampleRgba(texture, uv));
-}
-
-double ReferenceRenderer::sampleAlpha(const Texture& texture, const glm::dvec2& uv) {
-    return sampleRgba(texture, uv).a;
-}
-
-Material ReferenceRenderer::hitMaterial(const ReferenceHit& hit) const {
-    Material m = scene_.materials[scene_.objects[hit.object].material];
-    m.ka *= hit.tint;
-    m.kd *= hit.tint;
-    return m;
 }
 
 void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height,

@@ -74,6 +74,8 @@ struct ReferenceHit {
     double error = 0;
     // a textured mesh's base colour texture at the hit (chapter 12), else 1
     glm::dvec3 tint{1};
+    // its metal-roughness texture's roughness (G) and metalness (B), else 1
+    double roughnessTexel = 1, metalnessTexel = 1;
 };
 
 class ReferenceRenderer {
@@ -93,7 +95,8 @@ public:
     static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv);
     // Its alpha the same way (chapter 12's alpha test); 1 for an opaque image.
     static double sampleAlpha(const Texture& texture, const glm::dvec2& uv);
-    // The material of a hit, its ambient and diffuse colours times hit.tint.
+    // The material of a hit: its ambient and diffuse colours times hit.tint,
+    // or glTF's mapping redone with the textures' values (chapter 12).
     Material hitMaterial(const ReferenceHit& hit) const;
     // Through the point `offset` of pixel (x, y): (0.5, 0.5) its centre.
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
@@ -148,6 +151,11 @@ private:
     // earlier).
     void hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction,
                    double tMin, double tMax, ReferenceHit& best) const;
+    // Chapter 12: a mesh's textures at the hit of `triangle` with barycentric
+    // weights `w`, into hit.tint, its metal-roughness values and hit.shading
+    // (the normal texture's; textures.cpp).
+    void textureHit(const Object& obj, uint32_t triangle, const glm::dvec3& w,
+                    ReferenceHit& hit) const;
     void buildBvh();
 
 public:

@@ -266,14 +266,17 @@ MeshFile loadGltf(const std::string& path, bool binary) {
     MeshFile file;
     // [region gltf_texture]
     // A glTF texture is an image and a sampler; each one a material uses
-    // becomes one decoded Texture, however many materials share it.
-    std::map<int, int> textureOf;
-    auto baseColorTexture = [&](int index, const std::string& material) -> int {
+    // becomes one decoded Texture, however many materials share it (a colour
+    // decoded from sRGB, or data: metal-roughness, normals).
+    std::map<std::pair<int, TexelData>, int> textureOf;
+    auto decodedTexture = [&](int index, const std::string& material, const char* role,
+                              TexelData data) -> int {
         // `material`: "material leaf", or "material 3" for an unnamed one
         if (index < 0) return -1;
-        auto [it, added] = textureOf.try_emplace(index, int(file.textures.size()));
+        auto [it, added] =
+            textureOf.try_emplace({index, data}, int(file.textures.size()));
         if (!added) return it->second;
-        std::string what = material + ": base colour texture " + std::to_string(index);
+        std::string what = material + ": " + role + " texture " + std::to_string(index);
         if (size_t(index) >= model.textures.size())
             refuseFile(path, what + " does not exist");
         const tinygltf::Texture& texture = model.textures[index];
@@ -290,7 +293,7 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         if (image.image.size() != size_t(image.width) * image.height * 4)
             refuseFile(path, what + ": its image was not decoded");
         Texture t = decodeTexture(path + ": image " + std::to_string(texture.source),
-                                  image.image.data(), image.width, image.height);
+                                  image.image.data(), image.width, image.height, data);
         if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
             const tinygltf::Sampler& sampler = model.samplers[texture.sampler];
             t.wrapU = wrapOf(sampler.wrapS);
@@ -301,6 +304,7 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         return it->second;
     };
     // [end]
+    std::vector<int> texcoordSet;  // per material: the TEXCOORD_n its textures read
     for (const tinygltf::Material& m : model.materials) {
         const auto& pbr = m.pbrMetallicRoughness;
         FileMaterial f{.name = m.name.empty()
@@ -328,7 +332,26 @@ MeshFile loadGltf(const std::string& path, bool binary) {
                            1.0, 10.0);
         // an unnamed one is already "material N"
         std::string label = m.name.empty() ? f.name : "material " + f.name;
-        f.baseColorTexture = baseColorTexture(pbr.baseColorTexture.index, label);
+        f.baseColorTexture = decodedTexture(pbr.baseColorTexture.index, label,
+                                            "base colour", TexelData::Colour);
+        f.metallicRoughnessTexture =
+            decodedTexture(pbr.metallicRoughnessTexture.index, label, "metal-roughness",
+                           TexelData::Linear);
+        f.normalTexture =
+            decodedTexture(m.normalTexture.index, label, "normal", TexelData::Linear);
+        f.normalScale = m.normalTexture.scale;
+        if (!std::isfinite(f.normalScale))
+            refuseFile(path, label + ": the normal texture's scale is not finite");
+        // one set of texture coordinates per material (every texture's texCoord)
+        std::set<int> sets;
+        if (f.baseColorTexture >= 0) sets.insert(pbr.baseColorTexture.texCoord);
+        if (f.metallicRoughnessTexture >= 0)
+            sets.insert(pbr.metallicRoughnessTexture.texCoord);
+        if (f.normalTexture >= 0) sets.insert(m.normalTexture.texCoord);
+        if (sets.size() > 1)
+            refuseFile(path, label + ": its textures name different TEXCOORD sets "
+                                     "(RayGlass reads one per material)");
+        texcoordSet.push_back(sets.empty() ? 0 : *sets.begin());
         // KHR_materials_volume: a thicknessFactor above 0 makes a transmissive
         // material a volume (its value is for rasterizers: a ray tracer meets
         // the real thickness); without one it is thin-walled. The volume's
@@ -378,12 +401,10 @@ MeshFile loadGltf(const std::string& path, bool binary) {
         auto normal = primitive.attributes.find("NORMAL");
         if (normal != primitive.attributes.end())
             mesh.normals = read.vec3s(normal->second, what + " NORMAL");
-        // The texture coordinates the material's base colour texture names (TEXCOORD_0 by
-        // default).
+        // The texture coordinates the material's textures name (TEXCOORD_0 by default).
         int material = primitive.material, set = 0;
-        if (material >= 0 && size_t(material) < model.materials.size())
-            set =
-                model.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord;
+        if (material >= 0 && size_t(material) < texcoordSet.size())
+            set = texcoordSet[material];
         auto texcoord = primitive.attributes.find("TEXCOORD_" + std::to_string(set));
         if (texcoord != primitive.attributes.end()) {
             mesh.texcoords =

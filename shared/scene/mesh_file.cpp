@@ -33,13 +33,17 @@ std::string lowerExtension(const std::string& path) {
 // [region decode_texture]
 // Base colour textures are sRGB-encoded (glTF 2.0, 3.9.2): decoded here to
 // linear values once, so that filtering and shading work in linear light.
+// Metal-roughness and normal textures hold numbers, linear as they are.
 Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width,
-                      int height) {
+                      int height, TexelData data) {
     Texture t{.name = name, .width = uint32_t(width), .height = uint32_t(height)};
     t.texels.resize(size_t(width) * height);
     for (size_t i = 0; i < t.texels.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            t.texels[i][c] = float(srgbToLinear(rgba[4 * i + c] / 255.0));
+            t.texels[i][c] = data == TexelData::Colour
+                                 ? float(srgbToLinear(rgba[4 * i + c] / 255.0))
+                                 : float(rgba[4 * i + c] / 255.0);
+    if (data == TexelData::Linear) return t;  // its alpha is no coverage: ignored
     bool opaque = true;
     for (size_t i = 0; i < t.texels.size() && opaque; ++i)
         opaque = rgba[4 * i + 3] == 255;

@@ -33,6 +33,12 @@ struct FileMaterial {
     double dispersion = 0;
     // index into MeshFile::textures (times baseColor), -1: none
     int baseColorTexture = -1;
+    // index into MeshFile::textures: roughness in G, metalness in B (times
+    // the factors), linear; -1: none
+    int metallicRoughnessTexture = -1;
+    // index into MeshFile::textures: tangent-space normals, linear; -1: none
+    int normalTexture = -1;
+    double normalScale = 1;  // normalTexture's scale: of the normal's x and y
     // glTF's alpha (3.9.2 and 3.9.4): baseColorFactor's fourth number times
     // the texture's alpha; alphaMode OPAQUE ignores it, MASK keeps a hit
     // only where it is at least alphaCutoff, BLEND (read here as MASK at
@@ -60,7 +66,7 @@ struct MeshFile {
     std::vector<FileMaterial> materials;
     // parts that name no material and take the default (materials.back())
     size_t defaultMaterialParts = 0;
-    std::vector<Texture> textures;  // the base colour textures the materials use, decoded
+    std::vector<Texture> textures;  // the textures the materials use, decoded
     std::vector<MeshPart> parts;
     size_t skippedPrimitives = 0;  // points and lines: not surfaces
 };

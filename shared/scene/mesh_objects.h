@@ -20,28 +20,22 @@
 namespace rg {
 
 // [region mesh_material]
-// A glTF material in RayGlass's terms (docs/scene-format.md): the base
-// colour is diffuse where the surface is neither metal nor glass; metal is
-// an untinted mirror of that strength; the highlight narrows as the
-// roughness falls (Blinn-Phong's exponent 2 / alpha^2 - 2 for GGX's alpha =
-// roughness^2); f0 follows from the index, ((n - 1) / (n + 1))^2. A base
-// colour texture multiplies ka and kd where a ray meets the mesh (its
-// caller sets Material::texture).
+// A glTF material in RayGlass's terms (docs/scene-format.md): the metal-
+// roughness factors by applyMetalRoughness (rules.cpp), which they are kept
+// for, should a texture vary them per hit; f0 follows from the index,
+// ((n - 1) / (n + 1))^2. Its caller sets the textures: a base colour texture
+// multiplies ka and kd where a ray meets the mesh.
 inline Material materialFromFile(const FileMaterial& f) {
     Material m;  // named by the caller, after the file
-    double dielectric = (1 - f.metallic) * (1 - f.transmission);
-    m.kd = f.baseColor * dielectric;
-    m.ka = m.kd;
-    double alpha = std::max(f.roughness * f.roughness, 1e-3);
-    m.shininess = std::min(1e6, std::max(1.0, 2 / (alpha * alpha) - 2));
-    m.ks = glm::dvec3(0.04 * (1 - f.roughness));
-    m.reflectivity = f.metallic * (1 - f.transmission);
+    applyMetalRoughness(m, f.baseColor, f.metallic, f.roughness, f.transmission);
+    m.metalRough = {.baseColor = f.baseColor,
+                    .metallic = f.metallic,
+                    .roughness = f.roughness};  // the caller sets its texture
+    m.normalScale = f.normalScale;
     m.transmission = f.transmission;
     m.thin = f.transmission > 0 && !(f.thickness > 0);  // KHR_materials_volume
     m.ior = f.ior;
     m.f0 = std::pow((f.ior - 1) / (f.ior + 1), 2);
-    // rough reflection only for metal (ch 11)
-    m.roughness = f.transmission > 0 ? 0.0 : f.roughness * f.metallic;
     // ch 13
     if (f.attenuationDistance > 0 && !m.thin)  // a thin wall holds no medium
         m.absorption = absorptionOf(f.attenuationColor, f.attenuationDistance);
@@ -137,8 +131,11 @@ private:
             scene_.materials.push_back(materialFromFile(f));
             scene_.materials.back().name =
                 std::filesystem::path(file).filename().string() + ": " + f.name;
-            if (f.baseColorTexture >= 0)
-                scene_.materials.back().texture = firstTexture + f.baseColorTexture;
+            Material& m = scene_.materials.back();
+            if (f.baseColorTexture >= 0) m.texture = firstTexture + f.baseColorTexture;
+            if (f.metallicRoughnessTexture >= 0)
+                m.metalRough.texture = firstTexture + f.metallicRoughnessTexture;
+            if (f.normalTexture >= 0) m.normalTexture = firstTexture + f.normalTexture;
         }
         for (Mesh& m : mf.meshes) {
             if (m.degenerate > 0)

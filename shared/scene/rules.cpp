@@ -19,6 +19,26 @@ double smallestStretch(const glm::dmat4& m) {
                      glm::length(glm::dvec3(m[2]))});
 }
 
+// [region metal_roughness]
+// glTF's metal-roughness material (glTF 2.0, 3.9.2) in RayGlass's terms:
+// the base colour is diffuse where the surface is neither metal nor glass;
+// metal is an untinted mirror of that strength, rough by its roughness (ch
+// 11); the highlight narrows as the roughness falls (Blinn-Phong's exponent
+// 2 / alpha^2 - 2 for GGX's alpha = roughness^2).
+void applyMetalRoughness(Material& m, const glm::dvec3& baseColor, double metallic,
+                         double roughness, double transmission) {
+    double dielectric = (1 - metallic) * (1 - transmission);
+    m.kd = baseColor * dielectric;
+    m.ka = m.kd;
+    double alpha = std::max(roughness * roughness, 1e-3);
+    m.shininess = std::min(1e6, std::max(1.0, 2 / (alpha * alpha) - 2));
+    m.ks = glm::dvec3(0.04 * (1 - roughness));
+    m.reflectivity = metallic * (1 - transmission);
+    // rough reflection only for metal (ch 11)
+    m.roughness = transmission > 0 ? 0.0 : roughness * metallic;
+}
+// [end]
+
 // [region eye_tmin]
 // Rule 1 of docs/scene-format.md: camera rays ignore hits closer to the eye
 // than this. It is 0 unless the eye lies on a surface within that

@@ -59,6 +59,17 @@ struct Material {
     // texture's) is below alphaCutoff does not count; 0: every hit counts
     double alphaCutoff = 0;
     double alpha = 1;
+    // ch 12, glTF's metal-roughness texture: metalness and roughness vary
+    // per hit, so the glTF mapping (applyMetalRoughness) is redone at each
+    // hit from these factors, each times the texture's value there
+    struct MetalRoughness {
+        int texture = -1;  // Scene::textures: roughness in G, metalness in B; -1: none
+        glm::dvec3 baseColor{1};
+        double metallic = 1, roughness = 1;
+    } metalRough;
+    // ch 12: glTF's normal texture (tangent space; Scene::textures, -1: none)
+    int normalTexture = -1;
+    double normalScale = 1;  // its x and y are scaled by this
     // Chapter 13, for a material that transmits: the medium inside it.
     // Beer-Lambert coefficient per unit length: light falls by exp(-absorption d)
     glm::dvec3 absorption{0};
@@ -128,6 +139,13 @@ double smallestStretch(const glm::dmat4& transform);
 // Chapter 13: the Beer-Lambert coefficient of a medium in which white light
 // keeps `color` after `distance` (glTF's KHR_materials_volume): -ln(color) / distance.
 glm::dvec3 absorptionOf(const glm::dvec3& color, double distance);
+
+// Chapter 12: glTF's metal-roughness model in RayGlass's terms (its ka, kd,
+// ks, shininess, reflectivity and rough lobe), as mesh_objects.h's
+// materialFromFile describes; raygen_common.glsl's hitMaterial repeats it
+// per hit where a metal-roughness texture varies it.
+void applyMetalRoughness(Material& m, const glm::dvec3& baseColor, double metallic,
+                         double roughness, double transmission);
 
 // Chapter 13: a material's index of refraction at a wavelength (nm): a
 // named glass's Sellmeier equation, or glTF's KHR_materials_dispersion line

@@ -1,0 +1,280 @@
+// Chapter 12: glTF's metal-roughness and normal textures. The texture
+// values are tested against what glTF says they mean: a metal-roughness
+// texel must act as the same factors would, and a normal texture must
+// turn a flat mirror into the tilted mirror its normal describes. The
+// painted panel (meshes/panel.glb) is then checked against the reference.
+#include "harness.h"
+
+#include "core/files.h"
+#include "core/image.h"
+#include "scene/mesh_file.h"
+#include "scene/scene.h"
+
+#include <stb_image_write.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string assetDir() { return (fs::path(RG_EXE_12).parent_path() / "assets").string(); }
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// A 4 x 4 PNG of one colour, its bytes as given (data textures are not sRGB).
+void writeFlatPng(const std::string& path, const glm::ivec3& bytes) {
+    std::vector<unsigned char> rgb;
+    for (int i = 0; i < 16; ++i) rgb.insert(rgb.end(), {(unsigned char)bytes.x, (unsigned char)bytes.y, (unsigned char)bytes.z});
+    ASSERT_NE(stbi_write_png(path.c_str(), 4, 4, 3, rgb.data(), 12), 0) << path;
+}
+
+struct Square {
+    glm::vec3 corners[4];  // counter-clockwise seen from its front
+    glm::vec2 uv[4];
+};
+
+// The square [-1, 1]^2 scaled by `size` in the plane z = 0, facing +z, its
+// texture's u along +x (or -x, `mirrored`) and the image's top at +y.
+Square wall(float size, bool mirrored = false) {
+    float u0 = mirrored ? 1.0f : 0.0f, u1 = 1.0f - u0;
+    return {{{-size, -size, 0}, {size, -size, 0}, {size, size, 0}, {-size, size, 0}},
+            {{u0, 1}, {u1, 1}, {u1, 0}, {u0, 0}}};
+}
+
+// A glTF file of one square with `material`, whose textures are the PNGs
+// named in `textures` ({slot, file}: "normalTexture" on the material, the
+// others in pbrMetallicRoughness).
+void writeSquareGltf(const std::string& dir, const std::string& name, const Square& s, nlohmann::json material,
+                     const std::vector<std::pair<std::string, std::string>>& textures) {
+    struct Data {
+        float xyz[12];
+        float uv[8];
+        uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    } data{};
+    for (int i = 0; i < 4; ++i) {
+        for (int c = 0; c < 3; ++c) data.xyz[3 * i + c] = s.corners[i][c];
+        data.uv[2 * i] = s.uv[i].x, data.uv[2 * i + 1] = s.uv[i].y;
+    }
+    writeText(dir + "/" + name + ".bin", std::string(reinterpret_cast<const char*>(&data), sizeof data));
+    nlohmann::json j = {
+        {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", {0}}}}}, {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+        {"buffers", {{{"uri", name + ".bin"}, {"byteLength", sizeof data}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+                         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                       {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}}};
+    for (size_t i = 0; i < textures.size(); ++i) {
+        j["images"].push_back({{"uri", textures[i].second}});
+        j["textures"].push_back({{"source", i}});
+        nlohmann::json& owner = textures[i].first == "normalTexture" ? material : material["pbrMetallicRoughness"];
+        owner[textures[i].first]["index"] = i;
+    }
+    j["materials"] = {material};
+    writeText(dir + "/" + name + ".gltf", j.dump());
+}
+
+// Runs chapter 12 on `scene` (160 x 90) into `png`.
+rgtest::Png render(const std::string& scene, const std::string& png, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"--headless", "--validation", "--scene", scene, "--width", "160",
+                                     "--height", "90", "--frames", "1", "--output", png};
+    args.insert(args.end(), extra.begin(), extra.end());
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    return rgtest::readPng(png);
+}
+
+// Pixels whose channels differ by more than `codes`.
+size_t pixelsApart(const rgtest::Png& a, const rgtest::Png& b, int codes) {
+    size_t n = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c])) > codes) {
+                    ++n;
+                    break;
+                }
+    return n;
+}
+
+}  // namespace
+
+TEST(MetalRoughness, TexturesAreReadAsLinearData) {
+    std::string dir = rgtest::outputDir("12_mr_read");
+    writeFlatPng(dir + "/mr.png", {255, 128, 64});
+    writeFlatPng(dir + "/normal.png", {128, 128, 255});
+    writeSquareGltf(dir, "square", wall(1), {{"normalTexture", {{"scale", 0.5}}}},
+                    {{"metallicRoughnessTexture", "mr.png"}, {"normalTexture", "normal.png"}});
+    rg::MeshFile file = rg::loadMeshFile(dir + "/square.gltf");
+    ASSERT_EQ(file.materials.size(), 1u);
+    const rg::FileMaterial& m = file.materials[0];
+    ASSERT_GE(m.metallicRoughnessTexture, 0);
+    ASSERT_GE(m.normalTexture, 0);
+    EXPECT_EQ(m.normalScale, 0.5);
+    // numbers, not colours: 128 is 128/255, not sRGB's 0.216
+    EXPECT_EQ(file.textures[m.metallicRoughnessTexture].texels[0], glm::vec3(1.0f, 128 / 255.0f, 64 / 255.0f));
+    EXPECT_EQ(file.textures[m.normalTexture].texels[0], glm::vec3(128 / 255.0f, 128 / 255.0f, 1.0f));
+    // textures that name different coordinate sets: one line, naming both
+    writeText(dir + "/two_sets.gltf", [&] {
+        std::ifstream in(dir + "/square.gltf");
+        nlohmann::json j = nlohmann::json::parse(in);
+        j["materials"][0]["normalTexture"]["texCoord"] = 1;
+        return j.dump();
+    }());
+    try {
+        rg::loadMeshFile(dir + "/two_sets.gltf");
+        ADD_FAILURE() << "two_sets.gltf was read";
+    } catch (const rg::InputError& e) {
+        std::string message = e.what();
+        EXPECT_NE(message.find("two_sets.gltf: material 0: its textures name different TEXCOORD sets"),
+                  std::string::npos)
+            << message;
+    }
+}
+
+// Each texel of a uniform metal-roughness texture (factors 1) must draw the
+// picture the same numbers draw as factors: the shader's per-hit mapping
+// (raygen_common.glsl) against the host's (rules.cpp). A painted, rough
+// dielectric (G 140, B 0) tests roughness; a polished metal (G 0, B 255)
+// tests metalness: swapped channels would draw a grey diffuse square.
+TEST(MetalRoughness, ATexelActsAsTheSameFactors) {
+    std::string dir = rgtest::outputDir("12_mr_factors");
+    struct Case {
+        const char* name;
+        glm::ivec3 texel;
+    } cases[] = {{"paint", {255, 140, 0}}, {"metal", {255, 0, 255}}};
+    std::string textured, factors;
+    for (int i = 0; i < 2; ++i) {
+        const Case& c = cases[i];
+        writeFlatPng(dir + "/" + c.name + ".png", c.texel);
+        nlohmann::json base = {{"baseColorFactor", {0.8, 0.3, 0.2, 1}}};
+        nlohmann::json withTexture = {{"pbrMetallicRoughness", base}};
+        withTexture["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+        withTexture["pbrMetallicRoughness"]["roughnessFactor"] = 1.0;
+        writeSquareGltf(dir, std::string(c.name) + "_textured", wall(1), withTexture,
+                        {{"metallicRoughnessTexture", std::string(c.name) + ".png"}});
+        nlohmann::json asFactors = {{"pbrMetallicRoughness", base}};
+        asFactors["pbrMetallicRoughness"]["metallicFactor"] = c.texel.z / 255.0;
+        asFactors["pbrMetallicRoughness"]["roughnessFactor"] = c.texel.y / 255.0;
+        writeSquareGltf(dir, std::string(c.name) + "_factors", wall(1), asFactors, {});
+        std::string place = i == 0 ? R"("translate": [-1.1, 0, 0], "rotate_deg": [0, 20, 0])"
+                                   : R"("translate": [1.1, 0, 0], "rotate_deg": [0, -20, 0])";
+        textured += std::string(i ? ", " : "") + R"({"type": "mesh", "file": ")" + c.name +
+                    R"(_textured.gltf", "transform": {)" + place + "}}";
+        factors += std::string(i ? ", " : "") + R"({"type": "mesh", "file": ")" + c.name +
+                   R"(_factors.gltf", "transform": {)" + place + "}}";
+    }
+    auto scene = [&](const std::string& name, const std::string& objects) {
+        writeText(dir + "/" + name + ".json",
+                  R"({"camera": {"position": [0, 0.5, 4], "look_at": [0, 0, 0], "fov_y_deg": 45},
+                      "sky": {"image": ")" + assetDir() + R"(/sky.png"}, "ambient": 0.2,
+                      "lights": [{"position": [-1, 2, 4], "intensity": 1}], "objects": [)" + objects + "]}");
+        return dir + "/" + name + ".json";
+    };
+    rgtest::Png a = render(scene("textured", textured), dir + "/textured_image.png");
+    rgtest::Png b = render(scene("factors", factors), dir + "/factors_image.png");
+    ASSERT_EQ(a.width, 160);
+    EXPECT_EQ(pixelsApart(a, b, 1), 0u);
+    // and the two squares are what their numbers say: the paint shows its
+    // base colour (0.8, 0.3, 0.2), the metal does not: it mirrors the sky's ground
+    const uint8_t* paint = a.at(50, 45);
+    EXPECT_GT(int(paint[0]) - int(paint[2]), 60) << "paint " << int(paint[0]) << "," << int(paint[2]);
+    const uint8_t* metal = a.at(110, 45);
+    EXPECT_LT(int(metal[0]) - int(metal[2]), 60) << "metal " << int(metal[0]) << "," << int(metal[2]);
+}
+
+// A flat mirror with a uniform normal texture must reflect as the mirror
+// tilted to that normal does: the sky is at infinity, so only the
+// direction of the normal matters. The expected normal comes from glTF's
+// words (3.9.3), not from the shader: x along the texture's u, y toward the
+// image's top, z out of the surface, x and y times the scale. The second
+// case mirrors u (the tangent turns, the bitangent must not) and scales.
+TEST(NormalTexture, AFlatMirrorReflectsAsTheTiltedMirror) {
+    std::string dir = rgtest::outputDir("12_normal_tilt");
+    const glm::ivec3 bytes(160, 100, 236);
+    writeFlatPng(dir + "/tilt.png", bytes);
+    glm::dvec3 texel = glm::dvec3(bytes) / 255.0 * 2.0 - 1.0;
+    nlohmann::json mirror = {{"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.0}}}};
+    struct Case {
+        const char* name;
+        bool mirrored;
+        double scale;
+    } cases[] = {{"plain", false, 1.0}, {"mirrored", true, 0.5}};
+    for (const Case& c : cases) {
+        nlohmann::json mapped = mirror;
+        mapped["normalTexture"] = {{"scale", c.scale}};
+        writeSquareGltf(dir, std::string(c.name) + "_mapped", wall(50, c.mirrored), mapped, {{"normalTexture", "tilt.png"}});
+        // the wall's tangent frame: u along +x (or -x), the image's top +y, out +z
+        glm::dvec3 n = glm::normalize(glm::dvec3((c.mirrored ? -1 : 1) * texel.x * c.scale, texel.y * c.scale, texel.z));
+        // the wall turned so that its normal is n (Rodrigues, about z x n)
+        glm::dvec3 axis = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), n));
+        double angle = std::acos(n.z);
+        Square tilted = wall(50);
+        for (glm::vec3& p : tilted.corners) {
+            glm::dvec3 v(p);
+            v = v * std::cos(angle) + glm::cross(axis, v) * std::sin(angle) +
+                axis * glm::dot(axis, v) * (1 - std::cos(angle));
+            p = glm::vec3(v);
+        }
+        writeSquareGltf(dir, std::string(c.name) + "_tilted", tilted, mirror, {});
+        auto scene = [&](const std::string& file) {
+            std::string path = dir + "/" + file + ".json";
+            writeText(path, R"({"camera": {"position": [0, 0.3, 2], "look_at": [0, 0, 0], "fov_y_deg": 40},
+                "sky": {"image": ")" + assetDir() + R"(/sky.png"}, "ambient": 0,
+                "objects": [{"type": "mesh", "file": ")" + file + R"(.gltf"}]})");
+            return path;
+        };
+        rgtest::Png mappedImage = render(scene(std::string(c.name) + "_mapped"), dir + "/" + c.name + "_mapped_image.png");
+        rgtest::Png tiltedImage = render(scene(std::string(c.name) + "_tilted"), dir + "/" + c.name + "_tilted_image.png");
+        ASSERT_EQ(mappedImage.width, 160);
+        // no more than 0.1 % of pixels by more than 1 code (sky texels' edges)
+        EXPECT_LE(pixelsApart(mappedImage, tiltedImage, 1), 160u * 90 / 1000) << c.name;
+    }
+    // the tilt is there to be seen: the flat mirror without the texture differs
+    writeSquareGltf(dir, "flat", wall(50), mirror, {});
+    writeText(dir + "/flat.json", R"({"camera": {"position": [0, 0.3, 2], "look_at": [0, 0, 0], "fov_y_deg": 40},
+        "sky": {"image": ")" + assetDir() + R"(/sky.png"}, "ambient": 0, "objects": [{"type": "mesh", "file": "flat.gltf"}]})");
+    rgtest::Png flat = render(dir + "/flat.json", dir + "/flat_image.png");
+    EXPECT_GT(pixelsApart(flat, rgtest::readPng(dir + "/plain_mapped_image.png"), 1), 160u * 90 / 2);
+}
+
+// The painted panel (assets/scenes/panel.json): base colour, metal-roughness
+// and normal textures together, against the reference (32 frames of rough
+// reflection in the brushed half).
+TEST(MetalRoughness, PaintedPanelMatchesTheReference) {
+    rgtest::expectMatchesReference(RG_EXE_12, assetDir() + "/scenes/panel.json", "12_panel_reference",
+                                   {"--frames", "32"});
+}
+
+// What page 12 says of the panel, at 320 x 240 (its figure is 640 x 480):
+// red paint; the top rivet lit on its upper left, shaded on its lower right
+// (the light is at the upper left, the rivet only a normal texture); the
+// yellow ball's edge sharp in the polished left half of the window and
+// blurred in the brushed right half (along the row through the ball).
+TEST(MetalRoughness, PanelShowsWhatItsPageSays) {
+    std::string dir = rgtest::outputDir("12_panel_page");
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", assetDir() + "/scenes/panel.json",
+                                                  "--width", "320", "--height", "240", "--output", dir + "/panel.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    rgtest::Png png = rgtest::readPng(dir + "/panel.png");
+    ASSERT_EQ(png.width, 320);
+    const uint8_t* paint = png.at(80, 200);
+    EXPECT_GT(paint[0], 3 * paint[1]);
+    EXPECT_GT(paint[0], 3 * paint[2]);
+    auto luminance = [&](int x, int y) { return 0.2126 * png.at(x, y)[0] + 0.7152 * png.at(x, y)[1] + 0.0722 * png.at(x, y)[2]; };
+    EXPECT_GT(luminance(157, 33), 1.5 * luminance(163, 39));
+    // the largest step in blue between neighbours along row 116
+    auto largestStep = [&](int from, int to) {
+        int step = 0;
+        for (int x = from; x < to; ++x) step = std::max(step, std::abs(int(png.at(x + 1, 116)[2]) - int(png.at(x, 116)[2])));
+        return step;
+    };
+    EXPECT_GE(largestStep(130, 158), 60);  // sharp
+    EXPECT_LE(largestStep(162, 190), 15);  // blurred
+}
