@@ -33,11 +33,12 @@ build)
     cmake --build "$build" -j"$(nproc)" --target "$chapter" >> "$dir/src/$short.log" 2>&1
     mkdir -p "$out/shaders" "$out/assets"
     cp "$build/bin/$chapter" "$out/"
-    for s in "$chapter" common; do
-      [ -d "$build/bin/shaders/$s" ] && cp -r "$build/bin/shaders/$s" "$out/shaders/"
-    done
+    # all of them: chapter 12 runs chapter 11's ray generation shader
+    cp -r "$build/bin/shaders/." "$out/shaders/"
     cp -r "$build/bin/assets/scenes" "$out/assets/"
     [ -f "$build/bin/assets/sky.png" ] && cp "$build/bin/assets/sky.png" "$out/assets/"
+    # the meshes of chapters 12 and 13's scenes
+    [ -d "$build/bin/assets/meshes" ] && cp -r "$build/bin/assets/meshes" "$out/assets/"
     echo "$short: $(git -C "$repo" log -1 --format=%s "$short" | cut -c1-70)"
   done
   echo "(git worktree prune after removing $dir/src)"
