@@ -84,7 +84,7 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RT_BINDING_RAY_COUNT 7  // uint[] rays traced per pixel in the last frame
 // GpuMesh[]: where each mesh's buffers are (chapter 12, --sphere-mesh)
 #define RT_BINDING_MESHES 8
-// vec4[] linear texels of every base colour texture, one after another (chapter 12)
+// texture2D[]: the meshes' textures, one image each (chapter 12)
 #define RT_BINDING_TEXTURES 9
 
 #define SHAPE_SPHERE 0u
@@ -152,7 +152,7 @@ struct GpuMaterial {
     vec4 params;   // shininess, reflectivity, transmission, ior
     // f0, roughness; chapter 13's dispersion: 1 / Abbe number (0: none), GLASS_*
     vec4 extra;
-    uvec4 texture; // chapter 12's base colour texture: its first texel in textures[],
+    uvec4 texture; // chapter 12's base colour texture: its index in textures[],
                    // width, height (0: none), TEXTURE_* flags
     // chapter 13: absorption coefficient per unit length (rgb, Beer-Lambert), priority
     vec4 medium;
@@ -183,6 +183,7 @@ RG_SIZE(GpuMaterial, 192);
 #define TEXTURE_WRAP_MIRROR 2u
 #define TEXTURE_V_SHIFT 2u    // bits 0-1: u's wrap, bits 2-3: v's
 #define TEXTURE_NEAREST 16u   // magnification NEAREST; else bilinear
+#define TEXTURE_SRGB 32u      // a colour: its 8-bit rgb is sRGB-encoded
 
 // [region glasses]
 // Chapter 13: the glasses a scene names for its dispersion (GpuMaterial::

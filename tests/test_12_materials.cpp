@@ -278,3 +278,51 @@ TEST(MetalRoughness, PanelShowsWhatItsPageSays) {
     EXPECT_GE(largestStep(130, 158), 60);  // sharp
     EXPECT_LE(largestStep(162, 190), 15);  // blurred
 }
+
+// Textures are images of 4 bytes a texel (rt_textures.h): a 4096x4096 base
+// colour texture with a 2048x2048 metal-roughness and normal texture, the
+// sizes a scanned model brings (96 MiB here; as 16-byte floats in one
+// storage buffer, 384 MiB, which lavapipe's 128 MiB could not hold), loads
+// and renders with validation, and shows its four quadrants in place.
+TEST(Textures, LargeTexturesAreImagesOfFourBytesATexel) {
+    std::string dir = rgtest::outputDir("12_large_textures");
+    auto writePng = [&](const std::string& name, int side, auto colourAt) {
+        std::vector<unsigned char> rgb(size_t(side) * side * 3);
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x) {
+                glm::ivec3 c = colourAt(x * 2 / side, y * 2 / side);
+                for (int k = 0; k < 3; ++k) rgb[3 * (size_t(y) * side + x) + k] = (unsigned char)c[k];
+            }
+        ASSERT_NE(stbi_write_png((dir + "/" + name).c_str(), side, side, 3, rgb.data(), side * 3), 0);
+    };
+    const glm::ivec3 quadrants[2][2] = {{{255, 0, 0}, {0, 255, 0}}, {{0, 0, 255}, {255, 255, 255}}};
+    writePng("colour.png", 4096, [&](int qx, int qy) { return quadrants[qy][qx]; });
+    writePng("mr.png", 2048, [](int, int) { return glm::ivec3(255, 255, 0); });  // rough, not metal
+    writePng("normal.png", 2048, [](int, int) { return glm::ivec3(128, 128, 255); });
+    writeSquareGltf(dir, "big", wall(1), {{"pbrMetallicRoughness", {{"metallicFactor", 1.0}}}},
+                    {{"baseColorTexture", "colour.png"}, {"metallicRoughnessTexture", "mr.png"},
+                     {"normalTexture", "normal.png"}});
+    writeText(dir + "/big.json", R"({"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y_deg": 45},
+        "sky": {"top": 0, "horizon": 0, "bottom": 0}, "ambient": 1, "objects": [{"type": "mesh", "file": "big.gltf"}]})");
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, {"--headless", "--validation", "--scene", dir + "/big.json", "--width",
+                                                  "160", "--height", "90", "--frames", "1", "--output",
+                                                  dir + "/big_image.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json report = rgtest::readJson(dir + "/big_image.json");
+    EXPECT_EQ(report.value("validation_messages", -1), 0);
+    EXPECT_EQ(report["textures"].value("texels", 0), 4096 * 4096 + 2 * 2048 * 2048);
+    EXPECT_LE(report["textures"].value("bytes_per_texel", 99.0), 4.1);
+    // lit by ambient light alone, each quadrant is its colour (0.7 of it:
+    // glTF's rough dielectric maps to kd = base colour, ka = kd, ambient 1)
+    rgtest::Png png = rgtest::readPng(dir + "/big_image.png");
+    for (int qy = 0; qy < 2; ++qy)
+        for (int qx = 0; qx < 2; ++qx) {
+            // the quadrant's centre: (-0.5 or 0.5, 0.5 or -0.5) on the wall, seen from 3 away
+            double tanHalf = std::tan(22.5 * 3.14159265358979 / 180), aspect = 160.0 / 90;
+            int px = int((1 + (qx ? 0.5 : -0.5) / 3 / (tanHalf * aspect)) / 2 * 160);
+            int py = int((1 - (qy ? -0.5 : 0.5) / 3 / tanHalf) / 2 * 90);
+            const uint8_t* p = png.at(px, py);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_EQ(p[c] > 128, quadrants[qy][qx][c] > 128) << "quadrant " << qx << "," << qy << " channel " << c;
+        }
+}

@@ -1,13 +1,22 @@
-// A base colour texture looked up at a texture coordinate (chapter 12):
-// glTF's convention, (0, 0) at the image's top-left corner and (1, 1) at
-// its bottom-right, texel centres at half-integers; the sampler's wrap per
-// axis, then bilinear weights (or the nearest texel). As for the sky, the
-// filter is done here in float instead of by a Vulkan sampler, so the CPU
+// A mesh's texture looked up at a texture coordinate (chapter 12): glTF's
+// convention, (0, 0) at the image's top-left corner and (1, 1) at its
+// bottom-right, texel centres at half-integers; the sampler's wrap per
+// axis, then bilinear weights (or the nearest texel). The texels are read
+// one by one (texelFetch: 8-bit values, nothing filters), a colour's
+// decoded from sRGB, and the filter is done here in float instead of by a
+// Vulkan sampler, so the CPU
 // reference repeats it exactly; ray tracing has no derivatives to choose a
 // mip level from, so every hit reads the full-size image.
 #ifndef TEXTURE_GLSL
 #define TEXTURE_GLSL
-layout(binding = RT_BINDING_TEXTURES, std430) readonly buffer Textures { vec4 texels[]; };
+#extension GL_EXT_nonuniform_qualifier : require
+#extension GL_EXT_samplerless_texture_functions : require
+// [region texture_array]
+// One image per texture (rt_textures.h); a material's texture record holds
+// its index. Neighbouring rays may hit different materials, so the index is
+// marked nonuniformEXT: the driver must not assume one value for them all.
+layout(binding = RT_BINDING_TEXTURES) uniform texture2D textures[];
+// [end]
 
 // [region wrap]
 // A coordinate brought into [0, 1] by the wrap mode; the texel index is
@@ -29,7 +38,12 @@ vec4 texel(uvec4 t, int x, int y) {
     int w = int(t.y), h = int(t.z);
     x = wrapTexel(x, w, t.w & 3u);
     y = wrapTexel(y, h, (t.w >> TEXTURE_V_SHIFT) & 3u);
-    return texels[t.x + uint(y * w + x)];
+    vec4 v = texelFetch(textures[nonuniformEXT(t.x)], ivec2(x, y), 0);
+    if ((t.w & TEXTURE_SRGB) != 0u) {  // the sRGB curve (IEC 61966-2-1), exactly
+        bvec3 low = lessThanEqual(v.rgb, vec3(0.04045));
+        v.rgb = mix(pow((v.rgb + 0.055) / 1.055, vec3(2.4)), v.rgb / 12.92, low);
+    }
+    return v;
 }
 
 // [region sample]

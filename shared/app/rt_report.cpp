@@ -116,6 +116,13 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
                                                m.indices.size() * sizeof(uint32_t)}});
     }
     if (!meshes.empty()) accel["meshes"] = meshes;
+    // Chapter 12: the meshes' textures, one image each (rt_textures.h)
+    if (!scene.textures.empty())
+        report["textures"] = {{"count", scene.textures.size()},
+                              {"texels", rt.textures.texels},
+                              {"bytes", rt.textures.bytes},
+                              {"bytes_per_texel", double(rt.textures.bytes) /
+                                                      double(rt.textures.texels)}};
     std::printf("GPU median %.3f ms over %zu frames, %llu rays per frame, %.1f Mrays/s\n",
                 medianMs, times.gpuMs.size(), (unsigned long long)rays,
                 report["mrays_per_s"].get<double>());

@@ -136,10 +136,9 @@ std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
     return lights;
 }
 
-gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
-                               const std::vector<uint32_t>& firstTexel) {
-    // chapter 12: where a texture's texels are, its size, and how it wraps
-    // and filters; (0, 0, 0, 0) for none
+gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene) {
+    // chapter 12: which of the images a texture is, its size, and how it
+    // wraps and filters; (0, 0, 0, 0) for none
     auto texture = [&](int index) {
         if (index < 0) return glm::uvec4(0);
         const Texture& t = *scene.textures[index];
@@ -148,9 +147,10 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
                    : w == TextureWrap::Mirror ? TEXTURE_WRAP_MIRROR
                                               : TEXTURE_WRAP_REPEAT;
         };
-        return glm::uvec4(firstTexel[index], t.width, t.height,
+        return glm::uvec4(uint32_t(index), t.width, t.height,
                           wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT |
-                              (t.nearest ? TEXTURE_NEAREST : 0u));
+                              (t.nearest ? TEXTURE_NEAREST : 0u) |
+                              (t.srgb ? TEXTURE_SRGB : 0u));
     };
     const Material::MetalRoughness& mr = m.metalRough;
     bool perHit = mr.texture >= 0;  // hitMaterial redoes the mapping
@@ -174,22 +174,14 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
 }
 
 // The scene's buffers and structures against the device's limits, before
-// they are made: the largest storage buffers (objects, the sky's and the
-// textures' texels) and the instance and box counts of the acceleration
+// they are made: the largest storage buffers (objects, the sky's texels),
+// the textures' images and the instance and box counts of the acceleration
 // structures.
 void checkSceneFits(const Gpu& gpu, const Scene& scene, const SkyTexels& sky,
                     size_t grouped, size_t instanced) {
     std::string name;
     double limit = storageBufferLimit(gpu, &name);
-    double textureBytes = 0;
-    for (const auto& t : scene.textures)
-        textureBytes += double(t->width) * t->height * sizeof(glm::vec4);
-    if (textureBytes > limit)
-        throw InputError(scene.path + ": the meshes' " +
-                         std::to_string(scene.textures.size()) + " textures need " +
-                         mebibytes(textureBytes) +
-                         " in one storage buffer, more than this device's " + name +
-                         " (" + mebibytes(limit) + ")");
+    checkTexturesFit(gpu, scene);
     double skyBytes = double(sky.rgba.size()) * sizeof(float);
     if (skyBytes > limit) {
         double texels = std::floor(limit / 16),
@@ -307,21 +299,14 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
     for (uint32_t i : rt.group.objects)
         objects.push_back({glm::vec4(groupSphere(scene.objects[i])), SHAPE_SPHERE,
                            scene.objects[i].material, worldRadius(scene.objects[i]), 0});
-    std::vector<glm::vec4> texels;  // chapter 12: every texture's, one after another
-    for (const auto& t : scene.textures) {
-        rt.firstTexel.push_back(uint32_t(texels.size()));
-        for (size_t i = 0; i < t->texels.size(); ++i)
-            texels.emplace_back(t->texels[i], t->alpha.empty() ? 1.0f : t->alpha[i]);
-    }
     std::vector<gpu::GpuMaterial> materials;
-    for (const auto& m : scene.materials)
-        materials.push_back(toGpuMaterial(m, scene, rt.firstTexel));
+    for (const auto& m : scene.materials) materials.push_back(toGpuMaterial(m, scene));
     std::vector<gpu::GpuLight> lights = toGpuLights(scene);
     rt.objects = storage(gpu, deletion, objects);
     rt.materials = storage(gpu, deletion, materials);
     rt.lights = storage(gpu, deletion, lights);
     rt.sky = storage(gpu, deletion, sky.rgba);
-    rt.textures = storage(gpu, deletion, texels);
+    rt.textures = uploadTextures(gpu, deletion, scene);  // chapter 12
     rt.rayCount = createRayCounts(gpu, deletion, rt.width, rt.height);
     // [region mesh_table]
     auto address = [](const Buffer& b) {
@@ -360,8 +345,9 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
             {RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
              VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_INTERSECTION_BIT_KHR |
                  VK_SHADER_STAGE_ANY_HIT_BIT_KHR},
-            {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR},
+            {RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+             VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR,
+             uint32_t(rt.textures.images.size())},
         });
     // [region tlas_descriptor]
     VkDescriptorSet set = rt.descriptors.set;
@@ -381,8 +367,7 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
                 rt.rayCount);
     writeBuffer(gpu, set, RT_BINDING_MESHES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                 rt.meshes);
-    writeBuffer(gpu, set, RT_BINDING_TEXTURES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                rt.textures);
+    writeTextures(gpu, set, RT_BINDING_TEXTURES, rt.textures);
     return rt;
 }
 

@@ -6,6 +6,7 @@
 #include "host_device.h"
 #include "raytracing/accel.h"
 #include "raytracing/rt_pipeline.h"
+#include "raytracing/rt_textures.h"
 #include "scene/scene.h"
 #include "vulkan/descriptors.h"
 #include "vulkan/resources.h"
@@ -26,18 +27,14 @@ struct RtScene {
     std::vector<VkAccelerationStructureInstanceKHR> instances;
     Tlas tlas;
     Buffer camera, objects, materials, lights, sky, rayCount;
-    Buffer meshes;    // gpu::GpuMesh per mesh (chapter 12)
-    Buffer textures;  // the meshes' base colour textures' texels (chapter 12)
-    // where each of Scene::textures starts in `textures`
-    std::vector<uint32_t> firstTexel;
+    Buffer meshes;          // gpu::GpuMesh per mesh (chapter 12)
+    RtTextures textures;    // the meshes' textures, one image each (chapter 12)
     DescriptorSet descriptors;
     uint32_t width = 0, height = 0;
 };
 
-// A material as the shaders read it (host_device.h); `firstTexel`: where
-// each of the scene's textures starts in the texel buffer.
-gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene,
-                               const std::vector<uint32_t>& firstTexel);
+// A material as the shaders read it (host_device.h).
+gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene);
 // The scene's point lights as the shaders read them (the viewer uploads them again when
 // one moves).
 std::vector<gpu::GpuLight> toGpuLights(const Scene& scene);

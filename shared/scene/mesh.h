@@ -44,6 +44,10 @@ struct Texture {
     // the image's alpha, one per texel (linear, as glTF defines it); empty
     // where every texel is opaque
     std::vector<float> alpha;
+    // the image as decoded, RGBA 8 bits a channel: what the GPU samples
+    // (rt_textures.h), decoding sRGB itself where `srgb`
+    std::vector<uint8_t> rgba;
+    bool srgb = true;  // a colour, sRGB-encoded; false: data (metal-roughness, normals)
     TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
     bool nearest = false;             // magnification NEAREST: no bilinear filter
 };

@@ -37,6 +37,8 @@ std::string lowerExtension(const std::string& path) {
 Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width,
                       int height, TexelData data) {
     Texture t{.name = name, .width = uint32_t(width), .height = uint32_t(height)};
+    t.rgba.assign(rgba, rgba + size_t(width) * height * 4);
+    t.srgb = data == TexelData::Colour;
     t.texels.resize(size_t(width) * height);
     for (size_t i = 0; i < t.texels.size(); ++i)
         for (int c = 0; c < 3; ++c)

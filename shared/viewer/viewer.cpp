@@ -113,8 +113,8 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
         vkCmdUpdateBuffer(cmd, rt_.camera.handle, 0, sizeof matrices, matrices);
     }
     if (materialDirty_) {
-        gpu::GpuMaterial m = toGpuMaterial(scene_.materials[size_t(selectedMaterial_)],
-                                           scene_, rt_.firstTexel);
+        gpu::GpuMaterial m =
+            toGpuMaterial(scene_.materials[size_t(selectedMaterial_)], scene_);
         vkCmdUpdateBuffer(cmd, rt_.materials.handle, sizeof m * size_t(selectedMaterial_),
                           sizeof m, &m);
     }

@@ -216,6 +216,12 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice device,
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!v12.bufferDeviceAddress) missing.push_back("bufferDeviceAddress");
     if (!v12.hostQueryReset) missing.push_back("hostQueryReset");
+    // chapter 12's textures, one array of images indexed per hit (every
+    // device with acceleration structures has them: they come with
+    // VK_EXT_descriptor_indexing, which VK_KHR_acceleration_structure requires)
+    if (!v12.runtimeDescriptorArray) missing.push_back("runtimeDescriptorArray");
+    if (!v12.shaderSampledImageArrayNonUniformIndexing)
+        missing.push_back("shaderSampledImageArrayNonUniformIndexing");
     if (!as.accelerationStructure) missing.push_back("accelerationStructure");
     if (!rt.rayTracingPipeline) missing.push_back("rayTracingPipeline");
 
@@ -356,6 +362,9 @@ VkDevice createDevice(const PhysicalDeviceChoice& physical, bool present,
     VkPhysicalDeviceVulkan12Features vulkan12{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = &accelerationStructure,
+        // chapter 12: the textures' array, indexed by each hit's material
+        .shaderSampledImageArrayNonUniformIndexing = VK_TRUE,
+        .runtimeDescriptorArray = VK_TRUE,
         .hostQueryReset = VK_TRUE,       // reset timestamp queries from the CPU
         // acceleration structures and the SBT live at GPU addresses
         .bufferDeviceAddress = VK_TRUE,

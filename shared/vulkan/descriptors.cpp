@@ -12,9 +12,9 @@ DescriptorSet createDescriptorSet(const Gpu& gpu, DeletionQueue& deletion,
     for (const auto& b : bindings) {
         layoutBindings.push_back({.binding = b.binding,
                                   .descriptorType = b.type,
-                                  .descriptorCount = 1,
+                                  .descriptorCount = b.count,
                                   .stageFlags = b.stages});
-        sizes.push_back({.type = b.type, .descriptorCount = 1});
+        sizes.push_back({.type = b.type, .descriptorCount = b.count});
     }
     VkDescriptorSetLayoutCreateInfo layoutInfo{
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,

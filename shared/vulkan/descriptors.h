@@ -13,6 +13,7 @@ struct DescriptorBinding {
     uint32_t binding;
     VkDescriptorType type;
     VkShaderStageFlags stages;
+    uint32_t count = 1;  // an array of this many (chapter 12's textures)
 };
 
 struct DescriptorSet {
