@@ -10,13 +10,15 @@ and checks what a reader would see:
 - no message in the browser console (JavaScript errors, failed loads);
 - search works from disk: typing a word lists results;
 - at 1280 px no display formula and no listing of a chapter page scrolls
-  sideways; at 390 px no page is wider than the screen.
+  sideways; at 390 px no page is wider than the screen, and every display
+  formula fits its column, scaled to no less than 65 %.
 Saves screenshots of the front page and chapter 10 into OUT.
 
     test_site.py SITE_DIR DOCS_DIR OUT_DIR
 """
 import functools
 import html.parser
+import json
 import pathlib
 import re
 import sys
@@ -119,16 +121,34 @@ def check_page(d, site, page, docs, failures):
 
 def check_phone(d, site, pages, failures, out):
     """At a phone's 390 px nothing makes the page itself scroll sideways: a
-    wide formula, listing or table scrolls inside its own box. Screenshots
-    of the front page and chapter 10 as a phone shows them."""
+    wide listing or table scrolls inside its own box. Every display formula
+    fits its column whole (rayglass.js scales a wide one down), at no less
+    than 65 % of its size. Screenshots of the front page and chapter 10 as a
+    phone shows them."""
     d.set_window_size(390, 844)
     width = d.execute_script("return window.innerWidth")
+    formulas = 0
     for page in pages:
         d.get(page.as_uri())
         WebDriverWait(d, 10).until(lambda d: d.execute_script("return document.readyState") == "complete")
+        # the formulas are fitted again once KaTeX's fonts are in
+        WebDriverWait(d, 10).until(lambda d: d.execute_script(
+            "return !document.fonts || document.fonts.status === 'loaded'"))
+        rel = page.relative_to(site).as_posix()
         wide = d.execute_script("return document.documentElement.scrollWidth")
         if wide > width + 1:
-            failures.append(f"{page.relative_to(site).as_posix()}: at {width} px the page is {wide} px wide")
+            failures.append(f"{rel}: at {width} px the page is {wide} px wide")
+        rows = json.loads(d.execute_script(
+            "return JSON.stringify([...document.querySelectorAll('div.arithmatex')].map(e => [e.scrollWidth,"
+            " e.clientWidth, parseFloat(e.style.fontSize || '100'), e.textContent.slice(0, 40)]))"))
+        formulas += len(rows)
+        for scroll, client, percent, label in rows:
+            if scroll > client + 1:
+                failures.append(f"{rel}: at {width} px a formula scrolls sideways ({scroll} px of {client}): {label}")
+            if percent < 65:
+                failures.append(f"{rel}: at {width} px a formula is scaled to {percent} %: {label}")
+    if formulas == 0:
+        failures.append(f"at {width} px: no display formula found to check")
         if page.name in ("index.html", "10_refraction.html"):
             d.save_screenshot(str(out / f"site_phone_{page.stem}.png"))
     d.set_window_size(1280, 900)
