@@ -3,6 +3,7 @@
 // texel must act as the same factors would, and a normal texture must
 // turn a flat mirror into the tilted mirror its normal describes. The
 // painted panel (meshes/panel.glb) is then checked against the reference.
+#include "gltf_square.h"
 #include "harness.h"
 
 #include "core/files.h"
@@ -29,54 +30,6 @@ void writeFlatPng(const std::string& path, const glm::ivec3& bytes) {
     std::vector<unsigned char> rgb;
     for (int i = 0; i < 16; ++i) rgb.insert(rgb.end(), {(unsigned char)bytes.x, (unsigned char)bytes.y, (unsigned char)bytes.z});
     ASSERT_NE(stbi_write_png(path.c_str(), 4, 4, 3, rgb.data(), 12), 0) << path;
-}
-
-struct Square {
-    glm::vec3 corners[4];  // counter-clockwise seen from its front
-    glm::vec2 uv[4];
-};
-
-// The square [-1, 1]^2 scaled by `size` in the plane z = 0, facing +z, its
-// texture's u along +x (or -x, `mirrored`) and the image's top at +y.
-Square wall(float size, bool mirrored = false) {
-    float u0 = mirrored ? 1.0f : 0.0f, u1 = 1.0f - u0;
-    return {{{-size, -size, 0}, {size, -size, 0}, {size, size, 0}, {-size, size, 0}},
-            {{u0, 1}, {u1, 1}, {u1, 0}, {u0, 0}}};
-}
-
-// A glTF file of one square with `material`, whose textures are the PNGs
-// named in `textures` ({slot, file}: "normalTexture" on the material, the
-// others in pbrMetallicRoughness).
-void writeSquareGltf(const std::string& dir, const std::string& name, const Square& s, nlohmann::json material,
-                     const std::vector<std::pair<std::string, std::string>>& textures) {
-    struct Data {
-        float xyz[12];
-        float uv[8];
-        uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
-    } data{};
-    for (int i = 0; i < 4; ++i) {
-        for (int c = 0; c < 3; ++c) data.xyz[3 * i + c] = s.corners[i][c];
-        data.uv[2 * i] = s.uv[i].x, data.uv[2 * i + 1] = s.uv[i].y;
-    }
-    writeText(dir + "/" + name + ".bin", std::string(reinterpret_cast<const char*>(&data), sizeof data));
-    nlohmann::json j = {
-        {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", {0}}}}}, {"nodes", {{{"mesh", 0}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
-        {"buffers", {{{"uri", name + ".bin"}, {"byteLength", sizeof data}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
-                         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-                       {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}}};
-    for (size_t i = 0; i < textures.size(); ++i) {
-        j["images"].push_back({{"uri", textures[i].second}});
-        j["textures"].push_back({{"source", i}});
-        nlohmann::json& owner = textures[i].first == "normalTexture" ? material : material["pbrMetallicRoughness"];
-        owner[textures[i].first]["index"] = i;
-    }
-    j["materials"] = {material};
-    writeText(dir + "/" + name + ".gltf", j.dump());
 }
 
 // Runs chapter 12 on `scene` (160 x 90) into `png`.

@@ -2,6 +2,7 @@
 // matters, and right by optics. The CPU tests use the loader and the
 // reference's ray-triangle test directly; the GPU tests run the chapter as
 // a user would (lavapipe in CI, validation on).
+#include "gltf_square.h"
 #include "harness.h"
 #include "optics_image.h"
 
@@ -574,29 +575,11 @@ void writeQuadrantsPng(const std::string& path) {
 
 // A glTF square [-1, 1] x {0} x [-1, 1] facing up, texture coordinates from
 // (lo, lo) at its -x -z corner to (hi, hi) at +x +z, the base colour
-// texture `png` through `sampler`.
+// texture quadrants.png through `sampler`.
 void writeTexturedSquare(const std::string& dir, const std::string& name, float lo, float hi, const nlohmann::json& sampler) {
-    struct Data {
-        float xyz[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
-        float uv[8];
-        uint32_t indices[6] = {0, 2, 1, 0, 3, 2};
-    } data{.uv = {lo, lo, hi, lo, hi, hi, lo, hi}};
-    writeText(dir + "/" + name + ".bin", std::string(reinterpret_cast<const char*>(&data), sizeof data));
-    nlohmann::json j = {
-        {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", {0}}}}}, {"nodes", {{{"mesh", 0}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
-        {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}}}}},
-        {"textures", {{{"source", 0}, {"sampler", 0}}}},
-        {"images", {{{"uri", "quadrants.png"}}}},
-        {"samplers", {sampler}},
-        {"buffers", {{{"uri", name + ".bin"}, {"byteLength", sizeof data}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
-                         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}}},
-        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
-                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-                       {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}}};
-    writeText(dir + "/" + name + ".gltf", j.dump());
+    Square floor{{{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, {{lo, lo}, {lo, hi}, {hi, hi}, {hi, lo}}};
+    writeSquareGltf(dir, name, floor, {{"pbrMetallicRoughness", {{"metallicFactor", 0}}}},
+                    {{"baseColorTexture", "quadrants.png"}}, sampler);
 }
 
 TEST(Textures, GltfBaseColourTextureIsReadAndDecoded) {
