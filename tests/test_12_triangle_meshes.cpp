@@ -311,7 +311,7 @@ TEST(Meshes, CoincidingSpheresOfAListAreNamedByTheirPlace) {
         << r.output;
 }
 
-// A mesh that names no material takes its format's default (glTF 2.0, 3.9.1:
+// A mesh that names no material takes its format's default (glTF 2.0, 3.7.2.1:
 // "a default material MUST be used": base colour 1, metallic 1, roughness 1;
 // OBJ has none, a diffuse grey 0.8 stands in), and the scene says so once
 // per file; a scene's material still wins. The glTF triangle here has no

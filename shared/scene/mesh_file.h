@@ -78,7 +78,7 @@ struct MeshFile {
 MeshFile loadMeshFile(const std::string& path);
 
 // The material of a part that names none (MeshFile::defaultMaterialParts).
-// glTF defines one (glTF 2.0, 3.9.1: "If material is undefined, then a
+// glTF defines one (glTF 2.0, 3.7.2.1: "If material is undefined, then a
 // default material MUST be used"): base colour 1, metallic 1, roughness 1,
 // a rough white metal. OBJ defines none; Blender's default stands in: a
 // diffuse grey of 0.8, not metal.
