@@ -76,6 +76,72 @@ CLAIMS = [
         "lavapipe": True,
     },
     {
+        "page": "04_raygen_miss.md",
+        "pattern": r"`GPU median \.\.\. ms over 10 frames, ([0-9]+) rays per\s+frame`",
+        "command": ["04_raygen_miss", "--reference"],
+        "measure": lambda report, png: report["rays_per_frame"],
+        "tolerance": 0,  # one ray per pixel
+    },
+    {
+        "page": "04_raygen_miss.md",
+        "pattern": r"rmse [0-9.e-]+, \.\.\. ([0-9.]+)% of pixels off by > 1/255`",
+        "command": ["04_raygen_miss", "--reference"],
+        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
+        "tolerance": 0.00005,  # the page's last digit
+        "lavapipe": True,
+    },
+    {
+        "page": "05_ambient.md",
+        "pattern": r"`([0-9]+) rays per frame` and a reference error",
+        "command": ["05_ambient", "--reference"],
+        "measure": lambda report, png: report["rays_per_frame"],
+        "tolerance": 0,
+    },
+    {
+        "page": "05_ambient.md",
+        "pattern": r"RMSE, ([0-9.]+) % of pixels off",
+        "command": ["05_ambient", "--reference"],
+        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
+        "tolerance": 0.005,
+        "lavapipe": True,
+    },
+    {
+        "page": "06_diffuse.md",
+        "pattern": r"about ([0-9 ]+) rays per frame \(the camera rays plus",
+        "command": ["06_diffuse", "--reference"],
+        "measure": lambda report, png: report["rays_per_frame"],
+        "tolerance": 5000,  # "about 730 000": the page's last digit
+    },
+    {
+        "page": "09_fresnel.md",
+        "pattern": r"then about ([0-9 ]+)\s+rays per frame",
+        "command": ["09_fresnel", "--scene", "assets/scenes/glass_sphere.json", "--fresnel", "exact"],
+        "measure": lambda report, png: report["rays_per_frame"],
+        "tolerance": 1000,
+    },
+    {
+        "page": "10_refraction.md",
+        "pattern": r"the first command prints about ([0-9.]+) million rays",
+        "command": ["10_refraction", "--scene", "assets/scenes/glass_sphere.json"],
+        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
+        "tolerance": 0.05,
+    },
+    {
+        "page": "10_refraction.md",
+        "pattern": r"default scene eight bounces deep, about ([0-9.]+) million",
+        "command": ["10_refraction", "--fresnel", "exact", "--depth", "8"],
+        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
+        "tolerance": 0.005,
+    },
+    {
+        "page": "13_real_glass.md",
+        "pattern": r"reference of ([0-9.]+) % of pixels off by more\s+than 1/255",
+        "command": ["13_real_glass", "--reference", "--width", "320", "--height", "180"],
+        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
+        "tolerance": 0.002,  # about one pixel of 57,600
+        "lavapipe": True,
+    },
+    {
         "page": "13_real_glass.md",
         "pattern": r"this chapter traces ([0-9.]+) million\s+rays a frame",
         "command": ["13_real_glass", "--width", "800", "--height", "450"],
@@ -91,7 +157,7 @@ def check(claim, bin_dir, work):
     found = re.search(claim["pattern"], text)
     if not found:
         return f"{claim['page']}: no longer says /{claim['pattern']}/"
-    stated = float(found.group(1))
+    stated = float(found.group(1).replace(" ", ""))  # "730 000"
     name = claim["command"][0]
     png = work / f"{name}.png"
     args = [str(bin_dir / name), "--headless", "--validation", *claim["command"][1:], "--output", str(png)]
