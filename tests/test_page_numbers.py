@@ -43,6 +43,18 @@ def marker_distance(report, png):
     return float(numpy.mean(distances))
 
 
+def rays(page, pattern, command, tolerance, scale=1, lavapipe=False):
+    """A claim of rays a frame (in units of `scale`: 1e6 for "million")."""
+    return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
+            "measure": lambda report, png: report["rays_per_frame"] / scale, "lavapipe": lavapipe}
+
+
+def pixels_off(page, pattern, command, tolerance, lavapipe=True):
+    """A claim of the % of pixels off the reference by more than 1/255."""
+    return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
+            "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"], "lavapipe": lavapipe}
+
+
 CLAIMS = [
     {
         "page": "10_refraction.md",
@@ -51,104 +63,34 @@ CLAIMS = [
         "measure": marker_distance,
         "tolerance": 0.25,  # a quarter of a pixel
     },
-    {
-        "page": "12_triangle_meshes.md",
-        "pattern": r"reference:\s+([0-9.]+) % of pixels off by more than 1/255 on lavapipe",
-        "command": ["12_triangle_meshes", "--reference", "--width", "320", "--height", "180"],
-        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
-        "tolerance": 0.002,  # about one pixel of 57,600
-        "lavapipe": True,
-    },
-    {
-        "page": "12_triangle_meshes.md",
-        "pattern": r"at 800x450:\s+([0-9.]+) million rays a frame instead of",
-        "command": ["12_triangle_meshes", "--depth", "2"],
-        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
-        "tolerance": 0.01,
-        "lavapipe": True,
-    },
-    {
-        "page": "12_triangle_meshes.md",
-        "pattern": r"rays a frame instead of\s+([0-9.]+)\s+million",
-        "command": ["12_triangle_meshes"],
-        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
-        "tolerance": 0.01,
-        "lavapipe": True,
-    },
-    {
-        "page": "04_raygen_miss.md",
-        "pattern": r"`GPU median \.\.\. ms over 10 frames, ([0-9]+) rays per\s+frame`",
-        "command": ["04_raygen_miss", "--reference"],
-        "measure": lambda report, png: report["rays_per_frame"],
-        "tolerance": 0,  # one ray per pixel
-    },
-    {
-        "page": "04_raygen_miss.md",
-        "pattern": r"rmse [0-9.e-]+, \.\.\. ([0-9.]+)% of pixels off by > 1/255`",
-        "command": ["04_raygen_miss", "--reference"],
-        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
-        "tolerance": 0.00005,  # the page's last digit
-        "lavapipe": True,
-    },
-    {
-        "page": "05_ambient.md",
-        "pattern": r"`([0-9]+) rays per frame` and a reference error",
-        "command": ["05_ambient", "--reference"],
-        "measure": lambda report, png: report["rays_per_frame"],
-        "tolerance": 0,
-    },
-    {
-        "page": "05_ambient.md",
-        "pattern": r"RMSE, ([0-9.]+) % of pixels off",
-        "command": ["05_ambient", "--reference"],
-        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
-        "tolerance": 0.005,
-        "lavapipe": True,
-    },
-    {
-        "page": "06_diffuse.md",
-        "pattern": r"about ([0-9 ]+) rays per frame \(the camera rays plus",
-        "command": ["06_diffuse", "--reference"],
-        "measure": lambda report, png: report["rays_per_frame"],
-        "tolerance": 5000,  # "about 730 000": the page's last digit
-    },
-    {
-        "page": "09_fresnel.md",
-        "pattern": r"then about ([0-9 ]+)\s+rays per frame",
-        "command": ["09_fresnel", "--scene", "assets/scenes/glass_sphere.json", "--fresnel", "exact"],
-        "measure": lambda report, png: report["rays_per_frame"],
-        "tolerance": 1000,
-    },
-    {
-        "page": "10_refraction.md",
-        "pattern": r"the first command prints about ([0-9.]+) million rays",
-        "command": ["10_refraction", "--scene", "assets/scenes/glass_sphere.json"],
-        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
-        "tolerance": 0.05,
-    },
-    {
-        "page": "10_refraction.md",
-        "pattern": r"default scene eight bounces deep, about ([0-9.]+) million",
-        "command": ["10_refraction", "--fresnel", "exact", "--depth", "8"],
-        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
-        "tolerance": 0.005,
-    },
-    {
-        "page": "13_real_glass.md",
-        "pattern": r"reference of ([0-9.]+) % of pixels off by more\s+than 1/255",
-        "command": ["13_real_glass", "--reference", "--width", "320", "--height", "180"],
-        "measure": lambda report, png: 100 * report["error"]["frac_over_1_255"],
-        "tolerance": 0.002,  # about one pixel of 57,600
-        "lavapipe": True,
-    },
-    {
-        "page": "13_real_glass.md",
-        "pattern": r"this chapter traces ([0-9.]+) million\s+rays a frame",
-        "command": ["13_real_glass", "--width", "800", "--height", "450"],
-        "measure": lambda report, png: report["rays_per_frame"] / 1e6,
-        "tolerance": 0.01,  # the page's last digit
-        "lavapipe": True,
-    },
+    pixels_off("12_triangle_meshes.md",
+               r"reference:\s+([0-9.]+) % of pixels off by more than 1/255 on lavapipe",
+               ["12_triangle_meshes", "--reference", "--width", "320", "--height", "180"],
+               0.002),  # about one pixel of 57,600
+    rays("12_triangle_meshes.md", r"at 800x450:\s+([0-9.]+) million rays a frame instead of",
+         ["12_triangle_meshes", "--depth", "2"], 0.01, scale=1e6, lavapipe=True),
+    rays("12_triangle_meshes.md", r"rays a frame instead of\s+([0-9.]+)\s+million",
+         ["12_triangle_meshes"], 0.01, scale=1e6, lavapipe=True),
+    rays("04_raygen_miss.md", r"`GPU median \.\.\. ms over 10 frames, ([0-9]+) rays per\s+frame`",
+         ["04_raygen_miss", "--reference"], 0),  # one ray per pixel
+    pixels_off("04_raygen_miss.md", r"rmse [0-9.e-]+, \.\.\. ([0-9.]+)% of pixels off by > 1/255`",
+               ["04_raygen_miss", "--reference"], 0.00005),  # the page's last digit
+    rays("05_ambient.md", r"`([0-9]+) rays per frame` and a reference error", ["05_ambient", "--reference"], 0),
+    pixels_off("05_ambient.md", r"RMSE, ([0-9.]+) % of pixels off", ["05_ambient", "--reference"], 0.005),
+    rays("06_diffuse.md", r"about ([0-9 ]+) rays per frame \(the camera rays plus",
+         ["06_diffuse", "--reference"], 5000),  # "about 730 000": the page's last digit
+    rays("09_fresnel.md", r"then about ([0-9 ]+)\s+rays per frame",
+         ["09_fresnel", "--scene", "assets/scenes/glass_sphere.json", "--fresnel", "exact"], 1000),
+    rays("10_refraction.md", r"the first command prints about ([0-9.]+) million rays",
+         ["10_refraction", "--scene", "assets/scenes/glass_sphere.json"], 0.05, scale=1e6),
+    rays("10_refraction.md", r"default scene eight bounces deep, about ([0-9.]+) million",
+         ["10_refraction", "--fresnel", "exact", "--depth", "8"], 0.005, scale=1e6),
+    pixels_off("13_real_glass.md", r"reference of ([0-9.]+) % of pixels off by more\s+than 1/255",
+               ["13_real_glass", "--reference", "--width", "320", "--height", "180"],
+               0.002),  # about one pixel of 57,600
+    rays("13_real_glass.md", r"this chapter traces ([0-9.]+) million\s+rays a frame",
+         ["13_real_glass", "--width", "800", "--height", "450"], 0.01, scale=1e6,
+         lavapipe=True),  # the page's last digit
 ]
 
 
