@@ -8,6 +8,7 @@ and checks what a reader would see:
 - formulas rendered: a page whose Markdown has math shows KaTeX elements, one
   per formula, and no raw `$$`, `\\(` or `\\[` in its text;
 - no message in the browser console (JavaScript errors, failed loads);
+- every figure is a link to itself, to see it at full size;
 - search works from disk: typing a word lists results;
 - at 1280 px no display formula and no listing of a chapter page scrolls
   sideways; at 390 px no page is wider than the screen, and every display
@@ -114,6 +115,10 @@ def check_page(d, site, page, docs, failures):
         for raw in ("$$", "\\(", "\\["):
             if raw in text:
                 fail(f"raw math '{raw}' left in the text")
+    # Every figure of the article opens at full size on a click (rayglass.js).
+    for src in d.execute_script("return [...document.querySelectorAll('article img')]"
+                                ".filter(i => !i.closest('a')).map(i => i.getAttribute('src'))"):
+        fail(f"a figure is not a link to its full size: {src}")
     for entry in d.get_log("browser"):
         fail(f"console: {entry['level']} {entry['message']}")
     return want > 0

@@ -27,6 +27,17 @@
   }
   fit();
   if (document.fonts) document.fonts.ready.then(fit);
+  // A figure is a link to itself: a click shows it at its full size (the
+  // column is narrower than most of the chapters' pictures).
+  for (const img of document.querySelectorAll("article img")) {
+    if (img.closest("a")) continue;
+    const a = document.createElement("a");
+    a.href = img.getAttribute("src");
+    a.className = "rg-enlarge";
+    a.title = "full size";
+    img.replaceWith(a);
+    a.appendChild(img);
+  }
   window.addEventListener("load", fit);
   window.addEventListener("resize", fit);
 })();
