@@ -25,10 +25,10 @@ hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and thir
 // triangle's own direction of growing u, made perpendicular to the shading
 // normal; the bitangent's sign follows the texture's handedness (mirrored
 // coordinates flip it).
-vec3 normalFromTexture(GpuMaterial material, GpuMesh mesh, uvec3 v, vec3 a, vec3 b,
-                       vec3 c, vec2 uv) {
-    Floats uvs = Floats(mesh.texcoords);
-    vec2 ta = vec2At(uvs, v.x), d1 = vec2At(uvs, v.y) - ta, d2 = vec2At(uvs, v.z) - ta;
+// `uvs`: the triangle's three texture coordinates, `uv` the hit's.
+vec3 normalFromTexture(GpuMaterial material, vec3 a, vec3 b, vec3 c, mat3x2 uvs,
+                       vec2 uv) {
+    vec2 d1 = uvs[1] - uvs[0], d2 = uvs[2] - uvs[0];
     float det = d1.x * d2.y - d2.x * d1.y;
     if (det == 0.0) return payload.shading;  // no texture space on this triangle
     vec3 e1 = b - a, e2 = c - a;
@@ -93,7 +93,8 @@ void main() {
     HitTextures h = HitTextures(vec3(1.0), 1.0, 1.0);
     GpuMaterial material = materials[object.material];
     if (mesh.texcoords != uvec2(0u)) {
-        vec2 uv = texcoordAt(mesh, v, w);
+        mat3x2 uvs = texcoordsOf(mesh, v);  // read once: the normal texture's too
+        vec2 uv = texcoordAt(uvs, w);
         if (material.texture.z != 0u)
             h.baseColor = sampleTexture(material.texture, uv).rgb;
         if (material.metalRoughTexture.z != 0u) {
@@ -102,7 +103,7 @@ void main() {
             h.metalness = mr.b;
         }
         if (material.normalTexture.z != 0u)
-            payload.shading = normalFromTexture(material, mesh, v, a, b, c, uv);
+            payload.shading = normalFromTexture(material, a, b, c, uvs, uv);
     }
     payload.radiance = packHitTextures(h);
     // [end]

@@ -24,10 +24,15 @@ vec2 vec2At(Floats data, uint vertex) {
 }
 // [end]
 
-// The texture coordinate at the point of triangle v with barycentric weights w.
-vec2 texcoordAt(GpuMesh mesh, uvec3 v, vec3 w) {
+// The texture coordinates of triangle v's three vertices, one a column.
+mat3x2 texcoordsOf(GpuMesh mesh, uvec3 v) {
     Floats uvs = Floats(mesh.texcoords);
-    return w.x * vec2At(uvs, v.x) + w.y * vec2At(uvs, v.y) + w.z * vec2At(uvs, v.z);
+    return mat3x2(vec2At(uvs, v.x), vec2At(uvs, v.y), vec2At(uvs, v.z));
+}
+// The texture coordinate at barycentric weights w between the three.
+vec2 texcoordAt(mat3x2 t, vec3 w) { return w.x * t[0] + w.y * t[1] + w.z * t[2]; }
+vec2 texcoordAt(GpuMesh mesh, uvec3 v, vec3 w) {
+    return texcoordAt(texcoordsOf(mesh, v), w);
 }
 
 // The three vertex indices of triangle `triangle` of `mesh`.

@@ -4,9 +4,9 @@
 // axis, then bilinear weights (or the nearest texel). The texels are read
 // one by one (texelFetch: 8-bit values, nothing filters), a colour's
 // decoded from sRGB, and the filter is done here in float instead of by a
-// Vulkan sampler, so the CPU
-// reference repeats it exactly; ray tracing has no derivatives to choose a
-// mip level from, so every hit reads the full-size image.
+// Vulkan sampler, so the CPU reference repeats it exactly; ray tracing has
+// no derivatives to choose a mip level from, so every hit reads the
+// full-size image.
 #ifndef TEXTURE_GLSL
 #define TEXTURE_GLSL
 #extension GL_EXT_nonuniform_qualifier : require
