@@ -184,6 +184,11 @@ RG_SIZE(GpuMaterial, 192);
 #define TEXTURE_V_SHIFT 2u    // bits 0-1: u's wrap, bits 2-3: v's
 #define TEXTURE_NEAREST 16u   // magnification NEAREST; else bilinear
 #define TEXTURE_SRGB 32u      // a colour: its 8-bit rgb is sRGB-encoded
+#define TEXTURE_MIN_NEAREST 64u  // minification NEAREST within a level; else bilinear
+#define TEXTURE_MIPMAP_SHIFT 7u  // bits 7-8: between levels (TextureMipmap):
+#define TEXTURE_MIPMAP_NEAREST 1u  //   the nearest level,
+#define TEXTURE_MIPMAP_LINEAR 2u   //   a blend of two (trilinear); 0: level 0 only
+#define TEXTURE_LEVELS_SHIFT 16u   // bits 16-23: its mip levels
 
 // [region glasses]
 // Chapter 13: the glasses a scene names for its dispersion (GpuMaterial::
@@ -277,7 +282,7 @@ struct QueuedTree {
     uint pixel;       // y * width + x
     uint top;         // branches on the stack
     uint rays;        // rays traced so far
-    uint pad0;
+    uint coneStart;   // the tree's Tree::coneStart, its float's bits (ch 12)
     uint pad1;
 };
 RG_SIZE(QueuedTree, 128);

@@ -1,6 +1,9 @@
-// Chapter 12's tests: a glTF file of one textured square, written by the
-// test itself (a .gltf and its .bin beside the PNGs it names).
+// Chapter 12's tests: one run of the chapter, and a glTF file of one
+// textured square, written by the test itself (a .gltf and its .bin beside
+// the PNGs it names).
 #pragma once
+#include "harness.h"
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -11,6 +14,18 @@
 #include <vector>
 
 namespace {
+
+// Runs chapter 12 on `scene` (160 x 90, one frame, validation on) into `png`.
+inline rgtest::Png render(const std::string& scene, const std::string& png,
+                          const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {"--headless", "--validation", "--scene", scene, "--width", "160",
+                                     "--height", "90", "--frames", "1", "--output", png};
+    args.insert(args.end(), extra.begin(), extra.end());
+    rgtest::RunResult r = rgtest::run(RG_EXE_12, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    return rgtest::readPng(png);
+}
 
 struct Square {
     glm::vec3 corners[4];  // counter-clockwise seen from its front

@@ -462,6 +462,12 @@ TEST(Meshes, AThinWalledPaneLetsLightThroughUnbent) {
         };
         rg::FloatImage open = render(none, "none"), through = render(thin, "thin"), bent = render(solid, "solid");
         ASSERT_EQ(through.rgba.size(), open.rgba.size());
+        // the thin-wall branches are compiled in only where a material is thin (kThinWalls)
+        auto thinWalls = [&](const char* name) {
+            return rgtest::readJson(dir + "/" + tag + "_" + name + ".json").value("thin_walls", false);
+        };
+        EXPECT_TRUE(thinWalls("thin")) << tag;
+        EXPECT_FALSE(thinWalls("solid")) << tag;
         int behind = 0, moved = 0, bentAway = 0;
         double worst = 0;
         for (size_t i = 0; i < open.rgba.size(); i += 4) {
@@ -596,9 +602,9 @@ TEST(Textures, GltfBaseColourTextureIsReadAndDecoded) {
     EXPECT_EQ(file.meshes[0].texcoords[2], glm::vec2(10, 10));
     // make_meshes' tile: grout at the corner, then light top-left, dark top-right,
     // decoded from sRGB (the top row first, as the image is stored).
-    EXPECT_NEAR(t.texels[0].r, rg::srgbToLinear(140 / 255.0), 1e-6);
-    EXPECT_NEAR(t.texels[8 * 64 + 8].r, rg::srgbToLinear(222 / 255.0), 1e-6);
-    EXPECT_NEAR(t.texels[8 * 64 + 40].b, rg::srgbToLinear(88 / 255.0), 1e-6);
+    EXPECT_NEAR(rg::texelValue(t, 0, 0, 0).r, rg::srgbToLinear(140 / 255.0), 1e-12);
+    EXPECT_NEAR(rg::texelValue(t, 0, 8, 8).r, rg::srgbToLinear(222 / 255.0), 1e-12);
+    EXPECT_NEAR(rg::texelValue(t, 0, 40, 8).b, rg::srgbToLinear(88 / 255.0), 1e-12);
     // The scene gives the material the texture; a scene material drops it.
     rg::Scene scene = rg::loadScene(RG_SOURCE_DIR "/assets/scenes/meshes.json");
     ASSERT_EQ(scene.textures.size(), 1u);
@@ -616,7 +622,8 @@ TEST(Textures, ObjMapKdIsReadWithItsTextureCoordinatesFlipped) {
     rg::MeshFile file = rg::loadMeshFile(dir + "/square.obj");
     ASSERT_EQ(file.textures.size(), 1u);
     EXPECT_EQ(file.materials[0].baseColorTexture, 0);
-    EXPECT_EQ(file.textures[0].texels[0], glm::vec3(1, 0, 0));  // the image's top-left texel: red
+    // the image's top-left texel: red
+    EXPECT_EQ(rg::texelValue(file.textures[0], 0, 0, 0), glm::dvec4(1, 0, 0, 1));
     const rg::Mesh& m = file.meshes[0];
     ASSERT_EQ(m.texcoords.size(), 4u);
     // OBJ's (0, 0) is the image's bottom-left corner; glTF's (and RayGlass's) v points down.
@@ -632,9 +639,11 @@ TEST(Textures, ObjMapKdIsReadWithItsTextureCoordinatesFlipped) {
 }
 
 TEST(Textures, ReferenceFiltersAndWrapsAsGltfSays) {
-    rg::Texture t{.name = "t", .width = 2, .height = 2};
+    std::vector<unsigned char> bytes;
     for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 2; ++x) t.texels.push_back(glm::vec3(kQuadrants[y][x]));
+        for (int x = 0; x < 2; ++x)
+            for (int c = 0; c < 4; ++c) bytes.push_back(c == 3 ? 255 : 255 * kQuadrants[y][x][c]);
+    rg::Texture t = rg::decodeTexture("t", bytes.data(), 2, 2);
     auto at = [&](double u, double v) { return rg::ReferenceRenderer::sampleTexture(t, {u, v}); };
     EXPECT_EQ(at(0.25, 0.25), glm::dvec3(1, 0, 0));  // texel centres: the texels themselves
     EXPECT_EQ(at(0.75, 0.75), glm::dvec3(1, 1, 1));

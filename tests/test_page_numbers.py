@@ -43,6 +43,31 @@ def marker_distance(report, png):
     return float(numpy.mean(distances))
 
 
+BIN = None  # BUILD_BIN_DIR, for measures that run more commands
+FAR_FLOOR = ["--scene", "assets/scenes/far_floor.json", "--width", "480", "--height", "270"]
+_truths = {}
+
+
+def read_pfm(path):
+    """A colour PFM as linear RGB floats (tools/montage.py's reader)."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    import montage
+    return montage.read_pfm(str(path))
+
+
+def rmse_from_64_rays(report, png):
+    """Page 12's far floor: the RMSE (linear, all pixels and channels) of this
+    run's picture from the same view with 64 rays a pixel at level 0."""
+    if "far_floor" not in _truths:
+        out = png.parent / "far_floor_64.png"
+        subprocess.run([str(BIN / "12_triangle_meshes"), "--headless", *FAR_FLOOR, "--mips", "off",
+                        "--antialias", "on", "--frames", "64", "--output", str(out)],
+                       cwd=ROOT, check=True, capture_output=True, timeout=600)
+        _truths["far_floor"] = read_pfm(out.with_suffix(".pfm"))
+    image = read_pfm(png.with_suffix(".pfm"))
+    return float(numpy.sqrt(((image - _truths["far_floor"]) ** 2).mean()))
+
+
 def rays(page, pattern, command, tolerance, scale=1, lavapipe=False):
     """A claim of rays a frame (in units of `scale`: 1e6 for "million")."""
     return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
@@ -88,6 +113,12 @@ CLAIMS = [
     pixels_off("13_real_glass.md", r"reference of ([0-9.]+) % of pixels off by more\s+than 1/255",
                ["13_real_glass", "--reference", "--width", "320", "--height", "180"],
                0.002),  # about one pixel of 57,600
+    {"page": "12_triangle_meshes.md", "pattern": r"64-ray picture is\s+([0-9.]+) at full size",
+     "command": ["12_triangle_meshes", *FAR_FLOOR, "--mips", "off"], "measure": rmse_from_64_rays,
+     "tolerance": 0.0005, "lavapipe": True},
+    {"page": "12_triangle_meshes.md", "pattern": r"at full size and\s+([0-9.]+) with ray cones",
+     "command": ["12_triangle_meshes", *FAR_FLOOR], "measure": rmse_from_64_rays,
+     "tolerance": 0.0005, "lavapipe": True},
     rays("13_real_glass.md", r"this chapter traces ([0-9.]+) million\s+rays a frame",
          ["13_real_glass", "--width", "800", "--height", "450"], 0.01, scale=1e6,
          lavapipe=True),  # the page's last digit
@@ -123,7 +154,8 @@ def main(argv):
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2
-    bin_dir = pathlib.Path(argv[1]).resolve()
+    global BIN
+    bin_dir = BIN = pathlib.Path(argv[1]).resolve()
     failures = []
     with tempfile.TemporaryDirectory(prefix="rayglass-numbers-") as work:
         for claim in CLAIMS:

@@ -17,6 +17,8 @@
 //   torus_1m.glb     a torus of 1,000,000 triangles (a big mesh, binary glTF)
 //   tiles.glb        a tiled floor: a square with a base colour texture (an
 //                    embedded PNG) repeated 10 times each way, opaque and open
+//   far_floor.glb    the same tiles repeated 200 times each way (chapter 12's
+//                    mip levels: a floor that reaches the horizon)
 //   panel.glb        a painted metal panel: base colour, metal-roughness and normal
 //                    textures (a window of bare metal, rivets, a raised rim)
 //   leaf.glb         a leaf on a card: a square whose texture's alpha cuts the
@@ -463,6 +465,7 @@ int main(int argc, char** argv) {
                                 {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"metallicFactor", 0.0},
                                                           {"roughnessFactor", 0.9}}}};
         writeGltf(dir + "/tiles.glb", square(10), stone, true, {{"baseColorTexture", tilePng(64)}});
+        writeGltf(dir + "/far_floor.glb", square(200), stone, true, {{"baseColorTexture", tilePng(64)}});
         nlohmann::json leaf = {{"name", "leaf"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.5}, {"doubleSided", true},
                                {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}};
         nlohmann::json panel = {{"name", "painted metal"},

@@ -27,7 +27,7 @@ hitAttributeEXT vec2 barycentrics;  // weights of the triangle's second and thir
 // coordinates flip it).
 // `uvs`: the triangle's three texture coordinates, `uv` the hit's.
 vec3 normalFromTexture(GpuMaterial material, vec3 a, vec3 b, vec3 c, mat3x2 uvs,
-                       vec2 uv) {
+                       vec2 uv, float footprint) {
     vec2 d1 = uvs[1] - uvs[0], d2 = uvs[2] - uvs[0];
     float det = d1.x * d2.y - d2.x * d1.y;
     if (det == 0.0) return payload.shading;  // no texture space on this triangle
@@ -42,15 +42,40 @@ vec3 normalFromTexture(GpuMaterial material, vec3 a, vec3 b, vec3 c, mat3x2 uvs,
     t = normalize(t);
     vec3 bt = cross(n, t);
     if (dot(bt, -dpdv) < 0.0) bt = -bt;  // mirrored texture coordinates
-    vec3 texel = sampleTexture(material.normalTexture, uv).rgb * 2.0 - 1.0;
+    uvec4 map = material.normalTexture;
+    vec3 texel = sampleTexture(map, uv, texelLod(map, footprint)).rgb * 2.0 - 1.0;
     texel.xy *= material.factors.y;  // the normal texture's scale
     vec3 mapped = texel.x * t + texel.y * bt + texel.z * n;
     return dot(mapped, mapped) > 0.0 ? normalize(mapped) : n;
 }
 // [end]
 
+// [region ray_cone]
+// Which mip level (Akenine-Moller et al., Ray Tracing Gems 2019, ch. 20):
+// a pixel's rays fill a cone that widens by the angle one pixel spans
+// (`cone.y`, raygen_common.glsl) per unit of distance, here `cone.x + t`
+// from the eye. Where it meets the triangle at an angle its footprint is
+// 1/|n.d| longer, and the triangle stretches its texture coordinates' area
+// over its world area; log2 of the footprint in texture coordinates:
+//   0.5 log2(uv area / world area) + log2(width / |n.d|).
+// texelLod adds 0.5 log2(w h) for a texture of w x h texels.
+float coneLod(vec2 cone, vec3 a, vec3 b, vec3 c, mat3x2 uvs) {
+    if (!kRayCones) return 0.0;  // no mip levels, or --mips off: level 0
+    vec2 d1 = uvs[1] - uvs[0], d2 = uvs[2] - uvs[0];
+    float uvArea = abs(d1.x * d2.y - d2.x * d1.y);
+    mat3 toWorld = mat3(gl_ObjectToWorldEXT);
+    float worldArea = length(cross(toWorld * (b - a), toWorld * (c - a)));
+    float width = cone.y * (cone.x + gl_HitTEXT);
+    float cosine = abs(dot(payload.normal, gl_WorldRayDirectionEXT));
+    // a zero or infinite term gives -inf, +inf or NaN: sampleTexture reads
+    // level 0 for all but +inf (the last level)
+    return 0.5 * log2(uvArea / worldArea) + log2(width / cosine);
+}
+// [end]
+
 // [region closest_hit]
 void main() {
+    vec2 cone = payload.radiance.xy;  // the ray's cone, as traceClosest left it
     GpuObject object = objects[gl_InstanceCustomIndexEXT];
     GpuMesh mesh = meshes[object.mesh];
     uvec3 v = triangleAt(mesh, gl_PrimitiveID);
@@ -95,15 +120,17 @@ void main() {
     if (mesh.texcoords != uvec2(0u)) {
         mat3x2 uvs = texcoordsOf(mesh, v);  // read once: the normal texture's too
         vec2 uv = texcoordAt(uvs, w);
-        if (material.texture.z != 0u)
-            h.baseColor = sampleTexture(material.texture, uv).rgb;
-        if (material.metalRoughTexture.z != 0u) {
-            vec4 mr = sampleTexture(material.metalRoughTexture, uv);
+        float footprint = coneLod(cone, a, b, c, uvs);
+        uvec4 color = material.texture, mrTexture = material.metalRoughTexture;
+        if (color.z != 0u)
+            h.baseColor = sampleTexture(color, uv, texelLod(color, footprint)).rgb;
+        if (mrTexture.z != 0u) {
+            vec4 mr = sampleTexture(mrTexture, uv, texelLod(mrTexture, footprint));
             h.roughness = mr.g;
             h.metalness = mr.b;
         }
         if (material.normalTexture.z != 0u)
-            payload.shading = normalFromTexture(material, a, b, c, uvs, uv);
+            payload.shading = normalFromTexture(material, a, b, c, uvs, uv, footprint);
     }
     payload.radiance = packHitTextures(h);
     // [end]

@@ -37,7 +37,7 @@ Split splitAt(GpuMaterial m, bool entering, vec3 n, vec3 direction) {
     float ior = m.params.w;
     // Entering: air into the glass; leaving: the ratio inverts. A thin wall
     // (MATERIAL_THIN) has air on both sides: from either, air into glass.
-    bool thin = (m.flags & MATERIAL_THIN) != 0u;
+    bool thin = kThinWalls && (m.flags & MATERIAL_THIN) != 0u;
     Split s = entering || thin ? splitBetween(m, 1.0, ior, n, direction)
                                : splitBetween(m, ior, 1.0, n, direction);
     if (thin) s.eta = 1.0;  // crossed unbent
@@ -94,6 +94,10 @@ struct Tree {
     uint passes;  // chapter 13: surfaces crossed without a change of medium (MAX_PASSES)
     // chapter 13: the one wavelength (nm) of the branches that met dispersion
     float wavelength;
+    // chapter 12: the camera ray's hit distance, where every deeper branch's
+    // ray cone starts (traceClosest; the lengths of the segments between are
+    // left out, and so are the curvatures that widen or narrow a cone)
+    float coneStart;
 };
 Tree tree;
 
@@ -104,6 +108,7 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
     tree.passes = 0u;
     tree.radiance = vec3(0.0);
     tree.rays = rays;
+    tree.coneStart = 0.0;
 }
 
 // Traces the branch on top of the stack, adds the light it brings, and
@@ -114,7 +119,9 @@ void growBranch() {
     uint spectral = b.depth & BRANCH_SPECTRAL;
     b.depth &= ~BRANCH_SPECTRAL;
     // depth 0: a camera ray
-    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax);
+    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax,
+                 b.depth == 0u ? 0.0 : tree.coneStart);
+    if (b.depth == 0u) tree.coneStart = payload.t;
     ++tree.rays;
     vec3 throughput = b.throughput;
 #ifdef NESTED_MEDIA
@@ -141,7 +148,7 @@ void growBranch() {
     // volume, KHR_materials_volume): the same medium on both sides. Fresnel
     // from that medium into the material's index, from either side; what
     // crosses goes on unbent, and no medium begins or ends.
-    bool thin = (m.flags & MATERIAL_THIN) != 0u;
+    bool thin = kThinWalls && (m.flags & MATERIAL_THIN) != 0u;
     if (thin) n1 = mediumIor(currentMedium(b.media)), n2 = m.params.w;  // air: 1
     // [end]
     // [region media]
@@ -208,10 +215,12 @@ void growBranch() {
 }
 
 // The light arriving along one ray, following reflections and refractions
-// to the depth limit; `rays` counts every ray traced.
+// to the depth limit; `rays` counts every ray traced; `coneStart`: the
+// camera ray's hit distance (chapter 12's ray cones).
 vec3 traceTree(vec3 origin, vec3 direction, uint depth, vec3 throughput,
-               inout uint rays) {
+               inout uint rays, float coneStart) {
     plantTree(origin, direction, depth, throughput, rays);
+    tree.coneStart = coneStart;
     while (tree.top > 0) growBranch();
     rays = tree.rays;
     return tree.radiance;

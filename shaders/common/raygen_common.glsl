@@ -9,10 +9,28 @@ layout(binding = RT_BINDING_RAY_COUNT, std430) writeonly buffer RayCount {
 };
 layout(location = 0) rayPayloadEXT HitPayload payload;
 
-// The closest hit along the ray into `payload` (a miss leaves the sky's radiance).
-void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax) {
+// [region cone]
+// Chapter 12's ray cones (mesh.rchit's coneLod): the angle one pixel spans
+// at the centre of the image, atan(2 tan(fov_y / 2) / height) (projInverse
+// holds tan(fov_y / 2)).
+float pixelSpread() {
+    return atan(2.0 * abs(camera.projInverse[1][1]) / float(imageSize(target).y));
+}
+// [end]
+
+// The closest hit along the ray into `payload` (a miss leaves the sky's
+// radiance). The ray leaves with its cone in the payload's radiance, which
+// the hit overwrites: how far from the eye its path began (`coneStart`: 0
+// for a camera ray, then the camera ray's hit distance) and the spread.
+void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax,
+                  float coneStart) {
+    if (kRayCones) payload.radiance.xy = vec2(coneStart, pixelSpread());
     traceRayEXT(tlas, kRayFlags, 0xFF, RAY_TYPE_PRIMARY, 0, MISS_SKY, origin, tMin,
                 direction, tMax, 0);
+}
+
+void traceClosest(vec3 origin, float tMin, vec3 direction, float tMax) {
+    traceClosest(origin, tMin, direction, tMax, 0.0);
 }
 
 void traceClosest(vec3 origin, float tMin, vec3 direction) {

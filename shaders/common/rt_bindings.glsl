@@ -42,6 +42,15 @@ layout(constant_id = 3) const bool kCarefulShininess = true;
 layout(constant_id = 4) const bool kAlphaTest = false;
 const uint kRayFlags = kAlphaTest ? gl_RayFlagsNoneEXT : gl_RayFlagsOpaqueEXT;
 // [end]
+// Specialization constant 5 (rt_pipeline.h's thinWalls): true only for a
+// scene with a thin-walled material (MATERIAL_THIN). The ray tree's thin
+// branches cost chapter 10 1.6 % of a frame on an H200 (3 % with 10^6
+// spheres) where no material is thin (docs/performance.md).
+layout(constant_id = 5) const bool kThinWalls = true;
+// Specialization constant 6 (rt_pipeline.h's rayCones): true only for a
+// scene with a mip-mapped texture (chapter 12): rays then carry their cone
+// (raygen_common.glsl's traceClosest) and hits choose a level (mesh.rchit).
+layout(constant_id = 6) const bool kRayCones = false;
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 3.0e38;

@@ -29,7 +29,8 @@ bool queueTree(uvec2 pixel) {
     }
     queue.trees[slot] = QueuedTree(Branch[2](tree.stack[0], tree.stack[1]), tree.radiance,
                                    pixel.y * uint(imageSize(target).x) + pixel.x,
-                                   uint(tree.top), tree.rays, 0u, 0u);
+                                   uint(tree.top), tree.rays,
+                                   kRayCones ? floatBitsToUint(tree.coneStart) : 0u, 0u);
     return true;
 }
 
@@ -49,6 +50,7 @@ void dequeueTree(uint slot, out uvec2 pixel) {
     tree.top = int(q.top);
     tree.radiance = q.radiance;
     tree.rays = q.rays;
+    tree.coneStart = uintBitsToFloat(q.coneStart);
 }
 // [end]
 #endif

@@ -116,10 +116,12 @@ nlohmann::json finishRtRun(const App& app, const Options& opts, const Scene& sce
                                                m.indices.size() * sizeof(uint32_t)}});
     }
     if (!meshes.empty()) accel["meshes"] = meshes;
-    // Chapter 12: the meshes' textures, one image each (rt_textures.h)
+    // Chapter 12: the meshes' textures, one image each with its mip levels
+    // (rt_textures.h); texels: level 0's, bytes: every level's
     if (!scene.textures.empty())
         report["textures"] = {{"count", scene.textures.size()},
                               {"texels", rt.textures.texels},
+                              {"levels", rt.textures.levels},
                               {"bytes", rt.textures.bytes},
                               {"bytes_per_texel", double(rt.textures.bytes) /
                                                       double(rt.textures.texels)}};

@@ -28,13 +28,20 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                  "Spheres as icospheres subdivided this often (0: analytic spheres)", 0,
                  7)
         .live = false;  // the acceleration structures are built once
-    if (chapter.meshes)
+    if (chapter.meshes) {  // chapters 12 on; both fixed for the run
         params
             .choice("--triangles", settings.triangles,
                     "Ray-triangle test: the driver's own, or boxes and Woop, Benthin and "
                     "Wald's watertight test in an intersection shader",
                     {"builtin", "watertight"})
             .live = false;
+        params
+            .choice("--mips", settings.mips,
+                    "Textures' mip levels, chosen per hit by ray cones; off: the full "
+                    "size only (aliases where a texture is far)",
+                    {"on", "off"})
+            .live = false;
+    }
     enum { kAuto, kOn, kOff };  // --antialias, as chapter 04
     int antialias = kAuto;
     params.choice("--antialias", antialias,
@@ -64,6 +71,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                             std::chrono::steady_clock::now() - loadStart)
                             .count();
         if (!chapter.meshes) refuseMeshes(scene);
+        if (settings.mips == 1) keepLevelZero(scene);  // --mips off
         if (chapter.stage == ReferenceStage::Media) refuseUnstackableMedia(scene);
         App app;
         initApp(app, opts, chapter.title);
@@ -99,6 +107,10 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         useTriangleTest(app.gpu, shaders, triangles);
         // and an any-hit shader where a material is alpha-tested (glTF's MASK)
         bool alphaTest = useAlphaTest(shaders, scene);
+        // the ray tree's thin-wall branches only where a material is thin
+        bool thinWalls = useThinWalls(shaders, scene);
+        // rays carry their cones where a texture has mip levels (chapter 12)
+        bool rayCones = useRayCones(shaders, scene);
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
         // switch them on at any time, headless runs only from the start.
@@ -189,7 +201,9 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},
                                 {"parameters", params.values()},
                                 {"numerics", toJson(careful)},
-                                {"alpha_test", alphaTest}};
+                                {"alpha_test", alphaTest},
+                                {"thin_walls", thinWalls},
+                                {"ray_cones", rayCones}};
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},
                                              {"pixels", rt.width * rt.height},

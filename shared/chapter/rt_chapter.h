@@ -30,6 +30,8 @@ struct RtChapterSettings {
     float exposure = 0;
     // chapter 12 on, --triangles: 0 the driver's triangle test, 1 watertight (accel.h)
     int triangles = 0;
+    // chapter 12 on, --mips: 0 on (ray cones choose a level), 1 off (level 0)
+    int mips = 0;
 };
 
 struct RtChapter {

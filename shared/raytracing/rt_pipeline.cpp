@@ -4,6 +4,7 @@
 #include "vulkan/descriptors.h"
 
 #include <cstring>
+#include <iterator>
 
 namespace rg {
 
@@ -16,18 +17,20 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
     p.layout =
         createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
-    // Specialization: the driver compiles each stage with constants 0-4
+    // Specialization: the driver compiles each stage with constants 0-6
     // fixed, so branches on them cost nothing (and no registers). One list
     // for every stage: an entry a shader does not declare is ignored.
-    uint32_t constants[5] = {shaders.raygenConstant, shaders.raygenAverages,
-                             shaders.carefulSizes, shaders.carefulShininess,
-                             shaders.alphaTest};
-    VkSpecializationMapEntry entries[5];
-    for (uint32_t id = 0; id < 5; ++id)
+    uint32_t constants[] = {shaders.raygenConstant, shaders.raygenAverages,
+                            shaders.carefulSizes,   shaders.carefulShininess,
+                            shaders.alphaTest,      shaders.thinWalls,
+                            shaders.rayCones};
+    constexpr uint32_t kConstants = std::size(constants);
+    VkSpecializationMapEntry entries[kConstants];
+    for (uint32_t id = 0; id < kConstants; ++id)
         entries[id] = {.constantID = id,
                        .offset = id * uint32_t(sizeof(uint32_t)),
                        .size = sizeof(uint32_t)};
-    VkSpecializationInfo specialization{.mapEntryCount = 5,
+    VkSpecializationInfo specialization{.mapEntryCount = kConstants,
                                         .pMapEntries = entries,
                                         .dataSize = sizeof constants,
                                         .pData = constants};

@@ -36,6 +36,10 @@ struct RtShaders {
     // Constant 4, kAlphaTest: 1 for a scene with an alpha-tested material
     // (rays without the opaque flag, so that alpha.rahit runs where marked).
     uint32_t alphaTest = 0;
+    // Constant 5, kThinWalls: 1 for a scene with a thin-walled material.
+    uint32_t thinWalls = 1;
+    // Constant 6, kRayCones: 1 for a scene with a mip-mapped texture.
+    uint32_t rayCones = 0;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder

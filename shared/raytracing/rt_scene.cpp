@@ -17,12 +17,13 @@ namespace rg {
 // (chapter 12), that of its smoothest texel.
 static double highestShininess(const Material& m, const Scene& scene) {
     if (m.metalRough.texture < 0) return m.shininess;
-    float g = 1;  // roughness: the texture's G
-    for (const glm::vec3& t : scene.textures[m.metalRough.texture]->texels)
-        g = std::min(g, t.g);
+    // roughness: the texture's G, the smallest of any level (all its bytes)
+    const Texture& texture = *scene.textures[m.metalRough.texture];
+    uint8_t g = 255;
+    for (size_t i = 1; i < texture.rgba.size(); i += 4) g = std::min(g, texture.rgba[i]);
     Material smoothest = m;
     applyMetalRoughness(smoothest, m.metalRough.baseColor, m.metalRough.metallic,
-                        m.metalRough.roughness * g, m.transmission);
+                        m.metalRough.roughness * (g / 255.0), m.transmission);
     return smoothest.shininess;
 }
 
@@ -150,7 +151,10 @@ gpu::GpuMaterial toGpuMaterial(const Material& m, const Scene& scene) {
         return glm::uvec4(uint32_t(index), t.width, t.height,
                           wrap(t.wrapU) | wrap(t.wrapV) << TEXTURE_V_SHIFT |
                               (t.nearest ? TEXTURE_NEAREST : 0u) |
-                              (t.srgb ? TEXTURE_SRGB : 0u));
+                              (t.srgb ? TEXTURE_SRGB : 0u) |
+                              (t.minNearest ? TEXTURE_MIN_NEAREST : 0u) |
+                              uint32_t(t.mipmap) << TEXTURE_MIPMAP_SHIFT |
+                              uint32_t(t.levels.size()) << TEXTURE_LEVELS_SHIFT);
     };
     const Material::MetalRoughness& mr = m.metalRough;
     bool perHit = mr.texture >= 0;  // hitMaterial redoes the mapping
@@ -240,6 +244,29 @@ bool useAlphaTest(RtShaders& shaders, const Scene& scene) {
     for (uint32_t group : {HIT_GROUP_MESH, RAY_TYPE_SHADOW + HIT_GROUP_MESH})
         shaders.hitGroups.at(group).anyHit = "common/alpha.rahit";
     return true;
+}
+
+void keepLevelZero(Scene& scene) {
+    for (auto& texture : scene.textures) {
+        auto level0 = std::make_shared<Texture>(*texture);
+        level0->levels.resize(1);
+        level0->rgba.resize(4 * size_t(level0->width) * level0->height);
+        texture = level0;
+    }
+}
+
+bool useRayCones(RtShaders& shaders, const Scene& scene) {
+    bool any = false;
+    for (const auto& texture : scene.textures) any = any || texture->levels.size() > 1;
+    shaders.rayCones = any;
+    return any;
+}
+
+bool useThinWalls(RtShaders& shaders, const Scene& scene) {
+    bool any = false;
+    for (const Material& m : scene.materials) any = any || m.thin;
+    shaders.thinWalls = any;
+    return any;
 }
 
 // [region layout]

@@ -61,6 +61,14 @@ void useTriangleTest(const Gpu& gpu, RtShaders& shaders, TriangleTest test);
 // and constant 4 turns the rays' opaque flag off; makeInstances marks only
 // those instances not opaque. Returns whether it did.
 bool useAlphaTest(RtShaders& shaders, const Scene& scene);
+// Constant 5 (kThinWalls): the ray tree's thin-wall branches only for a
+// scene with a thin-walled material. Returns whether it has one.
+bool useThinWalls(RtShaders& shaders, const Scene& scene);
+// Chapter 12's mip levels: --mips off keeps level 0 alone of every texture
+// (before the upload and the reference); constant 6 (kRayCones) makes rays
+// carry their cones where a texture has more than one level. Returns whether.
+void keepLevelZero(Scene& scene);
+bool useRayCones(RtShaders& shaders, const Scene& scene);
 
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)

@@ -29,20 +29,15 @@ void checkTexturesFit(const Gpu& gpu, const Scene& scene) {
 }
 
 // [region texture_image]
-// An image of one texture: 8 bits a channel as the file has them, 4 bytes a
-// texel. UNORM for colours too: VK_FORMAT_R8G8B8A8_SRGB would decode sRGB
-// in the read, but only within a tolerance (with it, chapter 12's picture
-// on lavapipe moved by up to 7.9e-4), so the shader decodes with the exact
-// curve (texture.glsl), as the reference does.
-static Image textureImage(const Gpu& gpu, DeletionQueue& deletion, const Texture& t,
-                          VkDeviceSize& bytes) {
-    Image image =
-        createImage2D(gpu, deletion, t.width, t.height, VK_FORMAT_R8G8B8A8_UNORM,
-                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    VkMemoryRequirements requirements;
-    vkGetImageMemoryRequirements(gpu.device, image.handle, &requirements);
-    bytes += requirements.size;
-    return image;
+// An image of one texture and its mip levels: 8 bits a channel as the file
+// has them, 4 bytes a texel. UNORM for colours too: VK_FORMAT_R8G8B8A8_SRGB
+// would decode sRGB in the read, but only within a tolerance (with it,
+// chapter 12's picture on lavapipe moved by up to 7.9e-4), so the shader
+// decodes with the exact curve (texture.glsl), as the reference does.
+static Image textureImage(const Gpu& gpu, DeletionQueue& deletion, const Texture& t) {
+    return createImage2D(gpu, deletion, t.width, t.height, VK_FORMAT_R8G8B8A8_UNORM,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                         uint32_t(t.levels.size()));
 }
 // [end]
 
@@ -53,12 +48,16 @@ RtTextures uploadTextures(const Gpu& gpu, DeletionQueue& deletion, const Scene& 
     // no textures: a 1x1 stand-in, so that the array still has an element
     Texture standIn{.name = "none", .width = 1, .height = 1};
     standIn.rgba = {255, 255, 255, 255};
+    standIn.levels = {{1, 1, 0}};
     if (textures.empty()) textures.push_back(&standIn);
     VkDeviceSize staged = 0;
     for (const Texture* t : textures) {
-        out.images.push_back(textureImage(gpu, deletion, *t, out.bytes));
+        out.images.push_back(textureImage(gpu, deletion, *t));
         staged += t->rgba.size();
-        if (t != &standIn) out.texels += uint64_t(t->width) * t->height;
+        if (t == &standIn) continue;
+        out.bytes += out.images.back().bytes;
+        out.texels += uint64_t(t->width) * t->height;
+        out.levels = std::max(out.levels, uint32_t(t->levels.size()));
     }
     DeletionQueue local;  // the staging buffer lives until the copies are done
     Buffer staging =
@@ -74,13 +73,16 @@ RtTextures uploadTextures(const Gpu& gpu, DeletionQueue& deletion, const Scene& 
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-            VkBufferImageCopy copy{
-                .bufferOffset = offset,
-                .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                .imageExtent = {t.width, t.height, 1},
-            };
+            std::vector<VkBufferImageCopy> copies;  // one per mip level
+            for (uint32_t level = 0; level < t.levels.size(); ++level)
+                copies.push_back({
+                    .bufferOffset = offset + t.levels[level].offset,
+                    .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
+                    .imageExtent = {t.levels[level].width, t.levels[level].height, 1},
+                });
             vkCmdCopyBufferToImage(cmd, staging.handle, image,
-                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                   uint32_t(copies.size()), copies.data());
             // the copy's writes, visible to the ray tracing shaders' reads
             imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

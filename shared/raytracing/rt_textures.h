@@ -1,5 +1,5 @@
 // Chapter 12's textures on the GPU: each one a sampled image of 8 bits a
-// channel (sRGB for colours, UNORM for data), all of them one array of
+// channel with its mip levels, all of them one array of
 // descriptors that the shaders index by the material's texture record.
 #pragma once
 #include "scene/scene.h"
@@ -14,8 +14,9 @@ struct RtTextures {
     // Scene::textures' order; one 1x1 stand-in when the scene has none (the
     // descriptor array is never empty)
     std::vector<Image> images;
-    uint64_t texels = 0;      // of the scene's textures
-    VkDeviceSize bytes = 0;   // the device memory their images take
+    uint64_t texels = 0;      // of the scene's textures, level 0
+    VkDeviceSize bytes = 0;   // the device memory their images take, every level
+    uint32_t levels = 0;      // the most mip levels of any (1: --mips off)
 };
 
 // Throws InputError naming the scene when a texture is larger than the

@@ -236,7 +236,8 @@ void ReferenceRenderer::hitObject(uint32_t i, const glm::dvec3& origin,
         obj.type == ShapeType::Quad ? glm::dot(best.normal, direction) < 0 : front;
     best.tint = glm::dvec3(1);
     best.roughnessTexel = best.metalnessTexel = 1;
-    if (obj.type == ShapeType::Mesh) textureHit(obj, h.triangle, h.weights, best);
+    best.triangle = h.triangle;  // textureAt reads the textures there
+    best.weights = h.weights;
     best.error = kRounding * (maxMagnitude(origin) +
                               std::abs(t) * maxMagnitude(direction) + objectSize_[i]);
 }
@@ -372,6 +373,10 @@ void ReferenceRenderer::cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32
     double sy = (1 - (y + offset.y) / height * 2) * tanHalf;  // the top row looks up
     origin = c.position;
     direction = glm::normalize(forward + sx * right + sy * up);
+}
+
+double ReferenceRenderer::pixelSpread(uint32_t height) const {
+    return std::atan(2 * std::tan(glm::radians(scene_.camera.fovYDeg) / 2) / height);
 }
 
 glm::dvec3 ReferenceRenderer::secondaryOrigin(const glm::dvec3& p, double error,

@@ -76,6 +76,17 @@ struct ReferenceHit {
     glm::dvec3 tint{1};
     // its metal-roughness texture's roughness (G) and metalness (B), else 1
     double roughnessTexel = 1, metalnessTexel = 1;
+    // a mesh's triangle and the hit's barycentric weights (textureAt)
+    uint32_t triangle = 0;
+    glm::dvec3 weights{0};
+};
+
+// Chapter 12's ray cone (mesh.rchit's coneLod): the angle one pixel spans,
+// and how far from the eye the ray's cone starts (0 for a camera ray, then
+// the camera ray's hit distance, as the GPU's ray tree).
+struct RayCone {
+    double spread = 0;
+    double start = 0;
 };
 
 class ReferenceRenderer {
@@ -90,14 +101,25 @@ public:
     ReferenceHit traceLinear(const glm::dvec3& origin, const glm::dvec3& direction,
                              double tMin, double tMax) const;
     glm::dvec3 sky(const glm::dvec3& direction) const;
-    // A base colour texture at a texture coordinate: the sampler's wrap, then
-    // bilinear (or nearest) filtering, written again in double.
-    static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv);
-    // Its alpha the same way (chapter 12's alpha test); 1 for an opaque image.
+    // A texture at a texture coordinate and level of detail (log2 of texels
+    // a pixel spans): the sampler's wrap, filters and mip levels, written
+    // again in double (texture.glsl's sampleTexture).
+    static glm::dvec3 sampleTexture(const Texture& texture, const glm::dvec2& uv,
+                                    double lod = 0);
+    // Its alpha at level 0 (chapter 12's alpha test); 1 for an opaque image.
     static double sampleAlpha(const Texture& texture, const glm::dvec2& uv);
     // The material of a hit: its ambient and diffuse colours times hit.tint,
     // or glTF's mapping redone with the textures' values (chapter 12).
     Material hitMaterial(const ReferenceHit& hit) const;
+    // A traced hit's textures (chapter 12): into hit.tint, its metal-roughness
+    // values and hit.shading, at the level the ray's cone chooses.
+    void textureAt(ReferenceHit& hit, const glm::dvec3& direction,
+                   const RayCone& cone) const;
+    // log2 of the cone's footprint in texture coordinates at a mesh's hit.
+    double coneLod(const ReferenceHit& hit, const glm::dvec3& direction,
+                   const RayCone& cone) const;
+    // The angle one pixel spans at the image's centre, for `height` rows.
+    double pixelSpread(uint32_t height) const;
     // Through the point `offset` of pixel (x, y): (0.5, 0.5) its centre.
     void cameraRay(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
                    glm::dvec3& origin, glm::dvec3& direction,
@@ -116,13 +138,13 @@ public:
     // and refractions up to the depth limit.
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
                         const glm::dvec3& direction, int depth,
-                        const glm::dvec3& throughput) const;
+                        const glm::dvec3& throughput, const RayCone& cone = {}) const;
     // Chapter 13: the same inside `media`; `passes` counts the surfaces
     // crossed where no medium changes (at most 256 per camera ray, as the GPU).
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
                         const glm::dvec3& direction, int depth,
                         const glm::dvec3& throughput, const MediumStack& media,
-                        int& passes) const;
+                        int& passes, const RayCone& cone = {}) const;
     // n: the geometric normal (shadow rays leave along it); ns: the shading
     // normal. Ambient and diffuse light are weighted by `local`, the
     // highlight by `highlight` (a dielectric's share F of it, chapter 09 on).
@@ -152,10 +174,10 @@ private:
     void hitObject(uint32_t i, const glm::dvec3& origin, const glm::dvec3& direction,
                    double tMin, double tMax, ReferenceHit& best) const;
     // Chapter 12: a mesh's textures at the hit of `triangle` with barycentric
-    // weights `w`, into hit.tint, its metal-roughness values and hit.shading
-    // (the normal texture's; textures.cpp).
+    // weights `w` and footprint (coneLod), into hit.tint, its metal-roughness
+    // values and hit.shading (the normal texture's; textures.cpp).
     void textureHit(const Object& obj, uint32_t triangle, const glm::dvec3& w,
-                    ReferenceHit& hit) const;
+                    double footprint, ReferenceHit& hit) const;
     void buildBvh();
 
 public:

@@ -56,19 +56,24 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings,
 glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                                        const glm::dvec3& origin,
                                        const glm::dvec3& direction, int depth,
-                                       const glm::dvec3& throughput) const {
+                                       const glm::dvec3& throughput,
+                                       const RayCone& cone) const {
     int passes = 0;
     return radiance(settings, origin, direction, depth, throughput, MediumStack{},
-                    passes);
+                    passes, cone);
 }
 
 glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                                        const glm::dvec3& origin,
                                        const glm::dvec3& direction, int depth,
                                        const glm::dvec3& throughput,
-                                       const MediumStack& media, int& passes) const {
+                                       const MediumStack& media, int& passes,
+                                       const RayCone& cone) const {
     // depth 0: a camera ray
     ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);
+    textureAt(hit, direction, cone);
+    // the deeper rays' cones start at the camera ray's hit (ray_tree.glsl)
+    const RayCone deeper = depth == 0 ? RayCone{cone.spread, hit.t} : cone;
     bool nested = settings.stage == ReferenceStage::Media;
     // Chapter 13: Beer-Lambert along the way, in the medium the ray is in.
     int here = nested ? mediumOf(scene_, media) : -1;  // -1: air
@@ -121,7 +126,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
             dispersionOf(from) == dispersionOf(to)) {  // no surface here
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction,
-                                   depth, arriving, beyond, passes);
+                                   depth, arriving, beyond, passes, cone);
         }
         const auto none = std::pair(Glass::None, 0.0);
         if (dispersionOf(from) != none || dispersionOf(to) != none) {
@@ -133,7 +138,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                     at.wavelength =
                         settings.wavelength >= kMinNm ? settings.wavelength : 587.5618;
                     return radiance(settings, origin, direction, depth, throughput, at,
-                                    passes);
+                                    passes, cone);
                 }
                 glm::dvec3 sum(0);
                 for (double nm : *media.wavelengths) {
@@ -141,7 +146,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                     glm::dvec3 w = referenceSpectralWeight(nm);
                     int passesAt = passes;
                     sum += w * radiance(settings, origin, direction, depth,
-                                        throughput * w, at, passesAt);
+                                        throughput * w, at, passesAt, cone);
                 }
                 return sum / double(media.wavelengths->size());
             }
@@ -169,14 +174,16 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         if (thin || refractSides(direction, n, ns, split.n1, split.n2, t))
             color +=
                 refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
-                                     depth + 1, arriving * refracted, beyond, passes);
+                                     depth + 1, arriving * refracted, beyond, passes,
+                                     deeper);
         else
             reflected += refracted;  // a mesh's flat triangle reflects it all
     }
     if (reflected > 0 && strongEnough(reflected)) {
         glm::dvec3 r = reflectSides(direction, n, ns);
         color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r,
-                                      depth + 1, arriving * reflected, media, passes);
+                                      depth + 1, arriving * reflected, media, passes,
+                                      deeper);
     }
     return kept * color;
 }
@@ -211,6 +218,7 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
     glm::dvec3 origin, direction;
     cameraRay(x, y, width, height, origin, direction, offset);
     if (stdError) *stdError = 0;
+    const RayCone camera{pixelSpread(height), 0};  // chapter 12's ray cones
     // chapter 13: the eye may be inside a medium
     if (settings.stage == ReferenceStage::Media) {
         MediumStack eye;
@@ -224,21 +232,24 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
                     referencePathWavelength(x, y, settings.firstFrame, k));
         eye.wavelengths = &wavelengths;
         int passes = 0;
-        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes);
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
+                        camera);
     }
     if (settings.stage != ReferenceStage::Rough)
-        return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), camera);
 
     // Chapter 11: the first surface's mirror branch becomes the mean over a
     // cone of directions. Same split and cone as the GPU; the integral is
     // estimated with many stratified samples from this code's own generator.
     ReferenceHit hit = trace(origin, direction, eyeTmin(), 1e300);
     if (hit.t < 0) return sky(direction);
+    textureAt(hit, direction, camera);
+    const RayCone deeper{camera.spread, hit.t};
     const Material m = hitMaterial(hit);  // a mesh's texture tints it (chapter 12)
     glm::dvec3 n, ns;
     facingNormals(hit, direction, n, ns);
     if (m.roughness <= 0 || settings.maxDepth == 0)
-        return radiance(settings, origin, direction, 0, glm::dvec3(1.0));
+        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), camera);
     glm::dvec3 p = origin + hit.t * direction, v = -direction;
     bool entering = hit.frontFace;
     Split split = splitAt(settings, m, entering, glm::dot(ns, v));
@@ -251,7 +262,7 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
         glm::dvec3 t = direction;  // a thin wall's: unbent
         if (m.thin || refractSides(direction, n, ns, split.n1, split.n2, t))
             color += refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
-                                          1, glm::dvec3(refracted));
+                                          1, glm::dvec3(refracted), deeper);
         else
             reflected += refracted;
     }
@@ -280,7 +291,7 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
                                           cosTheta * mirror);
             glm::dvec3 value(0);  // below the surface: absorbed
             if (glm::dot(d, n) > 0)
-                value = radiance(settings, from, d, 1, glm::dvec3(reflected));
+                value = radiance(settings, from, d, 1, glm::dvec3(reflected), deeper);
             sum += value;
             sumSq += value * value;
         }

@@ -299,6 +299,23 @@ MeshFile loadGltf(const std::string& path, bool binary) {
             t.wrapU = wrapOf(sampler.wrapS);
             t.wrapV = wrapOf(sampler.wrapT);
             t.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+            // minFilter (3.8.4.3): within a level, and between levels; unset: trilinear
+            switch (sampler.minFilter) {
+            case TINYGLTF_TEXTURE_FILTER_NEAREST:
+                t.minNearest = true, t.mipmap = TextureMipmap::None;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR: t.mipmap = TextureMipmap::None; break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+                t.minNearest = true, t.mipmap = TextureMipmap::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+                t.mipmap = TextureMipmap::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+                t.minNearest = true;
+                break;
+            default: break;  // LINEAR_MIPMAP_LINEAR, or unset
+            }
         }
         file.textures.push_back(std::move(t));
         return it->second;

@@ -3,6 +3,8 @@
 // unit sphere that compares the analytic sphere with triangles
 // (docs/performance.md).
 #pragma once
+#include "scene/texture.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -31,25 +33,6 @@ struct Mesh {
     // mesh written far from its file's origin keeps float's precision (a
     // float's spacing is 0.06 at 1e6); its parts' transforms add `origin` back.
     glm::dvec3 origin{0};
-};
-
-// A base colour texture (chapter 12), decoded to linear RGB: a mesh file's
-// image with its sampler's wrap modes and magnification filter.
-enum class TextureWrap { Repeat, Clamp, Mirror };
-struct Texture {
-    std::string name;                 // for messages: "board.glb: image 0"
-    uint32_t width = 0, height = 0;
-    // row-major, top row first, linear (decoded from sRGB)
-    std::vector<glm::vec3> texels;
-    // the image's alpha, one per texel (linear, as glTF defines it); empty
-    // where every texel is opaque
-    std::vector<float> alpha;
-    // the image as decoded, RGBA 8 bits a channel: what the GPU samples
-    // (rt_textures.h), decoding sRGB itself where `srgb`
-    std::vector<uint8_t> rgba;
-    bool srgb = true;  // a colour, sRGB-encoded; false: data (metal-roughness, normals)
-    TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
-    bool nearest = false;             // magnification NEAREST: no bilinear filter
 };
 
 // An icosahedron subdivided `level` times, vertices on the unit sphere (each

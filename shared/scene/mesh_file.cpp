@@ -1,5 +1,5 @@
 // Mesh files (chapter 12): the reader each file's extension picks, and the
-// images their materials name, decoded once to linear light.
+// images their materials name (scene/texture.h decodes them).
 #include "scene/mesh_file.h"
 
 #include "core/display.h"
@@ -29,34 +29,6 @@ std::string lowerExtension(const std::string& path) {
 }
 
 }  // namespace
-
-// [region decode_texture]
-// Base colour textures are sRGB-encoded (glTF 2.0, 3.9.2): decoded here to
-// linear values once, so that filtering and shading work in linear light.
-// Metal-roughness and normal textures hold numbers, linear as they are.
-Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width,
-                      int height, TexelData data) {
-    Texture t{.name = name, .width = uint32_t(width), .height = uint32_t(height)};
-    t.rgba.assign(rgba, rgba + size_t(width) * height * 4);
-    t.srgb = data == TexelData::Colour;
-    t.texels.resize(size_t(width) * height);
-    for (size_t i = 0; i < t.texels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            t.texels[i][c] = data == TexelData::Colour
-                                 ? float(srgbToLinear(rgba[4 * i + c] / 255.0))
-                                 : float(rgba[4 * i + c] / 255.0);
-    if (data == TexelData::Linear) return t;  // its alpha is no coverage: ignored
-    bool opaque = true;
-    for (size_t i = 0; i < t.texels.size() && opaque; ++i)
-        opaque = rgba[4 * i + 3] == 255;
-    if (!opaque) {
-        t.alpha.resize(t.texels.size());
-        for (size_t i = 0; i < t.texels.size(); ++i)
-            t.alpha[i] = rgba[4 * i + 3] / 255.0f;
-    }
-    return t;
-}
-// [end]
 
 std::string decodeImage(const unsigned char* bytes, int size, int& width, int& height,
                         std::vector<unsigned char>& rgba) {

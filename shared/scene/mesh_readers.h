@@ -15,11 +15,6 @@ MeshFile loadObj(const std::string& path);                 // obj_file.cpp
 MeshFile loadGltf(const std::string& path, bool binary);   // gltf_file.cpp
 
 constexpr int kMaxTextureSide = 8192;
-// 8-bit RGBA texels to a linear texture: colours are sRGB-encoded, data
-// (metal-roughness, normals) are linear already (glTF 2.0, 3.9.2-3.9.3).
-enum class TexelData { Colour, Linear };
-Texture decodeTexture(const std::string& name, const unsigned char* rgba, int width,
-                      int height, TexelData data = TexelData::Colour);
 // An image file or the bytes of one, decoded to 8-bit RGBA; "" when it is fine.
 std::string decodeImage(const unsigned char* bytes, int size, int& width, int& height,
                         std::vector<unsigned char>& rgba);

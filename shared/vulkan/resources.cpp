@@ -92,14 +92,15 @@ Buffer createDeviceBuffer(const Gpu& gpu, DeletionQueue& deletion, const void* d
 }
 
 Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
-                    uint32_t height, VkFormat format, VkImageUsageFlags usage) {
-    Image image{.format = format, .extent = {width, height}};
+                    uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                    uint32_t levels) {
+    Image image{.format = format, .extent = {width, height}, .levels = levels};
     VkImageCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
         .imageType = VK_IMAGE_TYPE_2D,
         .format = format,
         .extent = {width, height, 1},
-        .mipLevels = 1,
+        .mipLevels = levels,
         .arrayLayers = 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
@@ -110,6 +111,7 @@ Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
     VK_CHECK(vkCreateImage(gpu.device, &info, nullptr, &image.handle));
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(gpu.device, image.handle, &requirements);
+    image.bytes = requirements.size;
     VkMemoryAllocateInfo allocate{
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = requirements.size,
@@ -123,7 +125,7 @@ Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
         .image = image.handle,
         .viewType = VK_IMAGE_VIEW_TYPE_2D,
         .format = format,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, 1},
     };
     VK_CHECK(vkCreateImageView(gpu.device, &view, nullptr, &image.view));
     VkDevice device = gpu.device;
@@ -180,7 +182,8 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .image = image,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
+        // every mip level (chapter 12's textures have several)
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1},
     };
     vkCmdPipelineBarrier(cmd,
                          srcStage,        // stages that must finish first

@@ -25,7 +25,9 @@ struct Image {
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
-    VkExtent2D extent{};
+    VkExtent2D extent{};         // level 0's
+    uint32_t levels = 1;         // mip levels (chapter 12's textures)
+    VkDeviceSize bytes = 0;      // the device memory it takes
 };
 
 uint32_t findMemoryType(const Gpu& gpu, uint32_t typeBits,
@@ -41,7 +43,8 @@ Buffer createDeviceBuffer(const Gpu& gpu, DeletionQueue& deletion, const void* d
                           VkDeviceSize size, VkBufferUsageFlags usage);
 
 Image createImage2D(const Gpu& gpu, DeletionQueue& deletion, uint32_t width,
-                    uint32_t height, VkFormat format, VkImageUsageFlags usage);
+                    uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                    uint32_t levels = 1);
 
 // Records with `record`, submits, and waits on a fence: the simplest GPU->CPU
 // synchronization (thesis 2.1.2), right for set-up work, never per frame.
