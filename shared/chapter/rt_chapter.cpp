@@ -7,6 +7,7 @@
 #include "raytracing/rt_scene.h"
 #include "raytracing/two_launches.h"
 #include "scene/scene.h"
+#include "viewer/shader_reload.h"
 #include "viewer/viewer.h"
 #include "vulkan/device_limits.h"
 #include "vulkan/frame_loop.h"
@@ -119,6 +120,15 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // (chapter 06's page).
         CarefulNumerics careful = carefulNumerics(opts, scene);
         specialize(shaders, careful);
+        // --shader-source: that tree's shaders, compiled now (an exercise's
+        // starter, docs/index.md), instead of the build's SPIR-V
+        std::optional<ShaderReload> source;
+        if (!opts.shaderSource.empty()) {
+            source.emplace(shaders, opts.shaderSource);
+            std::optional<RtShaders> compiled = source->compileNow();
+            if (!compiled) throw InputError(opts.shaderSource + ": " + source->status());
+            shaders = *compiled;
+        }
         RtPipeline pipeline = createRtPipeline(
             app.gpu, app.deletion, rt.descriptors.layout, sizeof(gpu::RtPush), shaders);
         // Chapter 10: two launches, where the driver can size a launch from a

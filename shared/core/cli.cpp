@@ -32,8 +32,9 @@ void addSceneOptions(CLI::App& app, Options& opts, bool reference) {
         "--no-ui", [&opts] { opts.ui = false; },
         "Start the window without its overlay (H shows it)");
     app.add_option("--shader-source", opts.shaderSource,
-                   "Source tree whose shaders/ a window recompiles when saved or on F5 "
-                   "(default: the one built from)")
+                   "Source tree whose shaders/ are compiled at the start, and again in "
+                   "a window when saved or on F5 (default: the build's SPIR-V, and the "
+                   "tree built from)")
         ->check(CLI::ExistingDirectory);
     app.add_option("--layout", opts.groupSpheres,
                    "Acceleration structures: grouped (the static spheres in one BLAS of "

@@ -162,6 +162,12 @@ std::optional<RtShaders> ShaderReload::poll() {
 
 void ShaderReload::request() { pending_ = true; }
 
+std::optional<RtShaders> ShaderReload::compileNow() {
+    start();
+    if (worker_.joinable()) worker_.join();
+    return poll();
+}
+
 void ShaderReload::start() {
     pending_ = false;
     // the constructor said why

@@ -31,6 +31,11 @@ public:
 
     void request();  // F5: compile now, changed or not
 
+    // Compiles every stage now and waits: the stages (spirvDir set, valid
+    // while this object lives), or nothing, and status() says why (the
+    // first error's file and line). --shader-source's first pipeline.
+    std::optional<RtShaders> compileNow();
+
     // Once a frame. Looks at the sources' times (every half second) and
     // starts a compile when one changed; returns the compiled stages
     // (RtShaders::spirvDir set) once, when every stage compiled.
