@@ -5,7 +5,8 @@ command gives fails, and so does a change that moves the result away from
 what the page says.
 
 Each claim names its page, a pattern that finds the stated number in the
-page's text (so the test reads the page's number, not a copy of it), the
+page's text (so the test reads the page's number, not a copy of it; a
+claim in words, "no pixel", gives the number it means), the
 command (a chapter from BUILD_BIN_DIR, headless, with --validation), how to
 read the same number off the run's report or image, and how far apart the
 two may be (about one pixel or one unit of the last digit the page gives).
@@ -68,6 +69,12 @@ def rmse_from_64_rays(report, png):
     return float(numpy.sqrt(((image - _truths["far_floor"]) ** 2).mean()))
 
 
+def rmse(page, pattern, command, tolerance, lavapipe=True):
+    """A claim of the reference error's RMSE (linear)."""
+    return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
+            "measure": lambda report, png: report["error"]["rmse"], "lavapipe": lavapipe}
+
+
 def rays(page, pattern, command, tolerance, scale=1, lavapipe=False):
     """A claim of rays a frame (in units of `scale`: 1e6 for "million")."""
     return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
@@ -104,6 +111,13 @@ CLAIMS = [
     pixels_off("05_ambient.md", r"RMSE, ([0-9.]+) % of pixels off", ["05_ambient", "--reference"], 0.005),
     rays("06_diffuse.md", r"about ([0-9 ]+) rays per frame \(the camera rays plus",
          ["06_diffuse", "--reference"], 5000),  # "about 730 000": the page's last digit
+    rays("07_specular.md", r"chapter 06, about ([0-9 ]+)\s", ["07_specular", "--reference"], 1000),
+    rmse("07_specular.md", r"reference RMSE of\s+about ([0-9.e-]+)\.", ["07_specular", "--reference"], 1e-7),
+    rays("08_reflection.md", r"\(about ([0-9 ]+):\s+the reflected rays\)", ["08_reflection", "--reference"], 1000),
+    rmse("08_reflection.md", r"reference RMSE of about ([0-9.e-]+) \(no pixel", ["08_reflection", "--reference"],
+         5e-7),
+    {**pixels_off("08_reflection.md", r"\(no pixel off by more\s+than 1/255\)", ["08_reflection", "--reference"], 0),
+     "value": 0.0},  # "no pixel": 0 %
     rays("09_fresnel.md", r"then about ([0-9 ]+)\s+rays per frame",
          ["09_fresnel", "--scene", "assets/scenes/glass_sphere.json", "--fresnel", "exact"], 1000),
     rays("10_refraction.md", r"the first command prints about ([0-9.]+) million rays",
@@ -130,7 +144,8 @@ def check(claim, bin_dir, work):
     found = re.search(claim["pattern"], text)
     if not found:
         return f"{claim['page']}: no longer says /{claim['pattern']}/"
-    stated = float(found.group(1).replace(" ", ""))  # "730 000"
+    # "730 000"; a claim in words ("no pixel") gives its value
+    stated = claim["value"] if "value" in claim else float(found.group(1).replace(" ", ""))
     name = claim["command"][0]
     png = work / f"{name}.png"
     args = [str(bin_dir / name), "--headless", "--validation", *claim["command"][1:], "--output", str(png)]
