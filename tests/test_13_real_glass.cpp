@@ -15,6 +15,7 @@
 #include <fstream>
 #include <glm/glm.hpp>
 
+#include "core/display.h"
 #include "core/image.h"
 
 namespace {
@@ -478,3 +479,46 @@ TEST(Dispersion, BadDispersionIsOneClearLine) {
 }
 
 }  // namespace
+
+// Page 13's "what you should see" of the two amber balls: one glass, one
+// twice the other's size, so the larger is redder (Beer-Lambert: each
+// channel keeps exp(-sigma d), and the attenuation colour (0.85, 0.45,
+// 0.12) takes green and blue faster than red). Each ball's disc is
+// projected from the scene file's camera here, and the linear mean of the
+// pixels within 0.7 of its radius is read off the chapter's own picture.
+// (Not darker overall: the larger ball shows more of the bright floor and
+// sky through its upper half.)
+TEST(Media, TheLargerAmberBallIsRedder) {
+    std::string dir = rgtest::outputDir("13_amber");
+    const int W = 320, H = 180;
+    rgtest::RunResult r = rgtest::run(RG_EXE_13, {"--headless", "--validation", "--width", std::to_string(W), "--height",
+                                                  std::to_string(H), "--output", dir + "/real_glass.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    rgtest::Png png = rgtest::readPng(dir + "/real_glass.png");
+    // assets/scenes/real_glass.json's camera and amber balls
+    const glm::dvec3 eye(0.25, 0.95, 3.2), target(0.3, 0.38, 0);
+    const double tanHalf = std::tan(20 * 3.14159265358979 / 180), aspect = double(W) / H;
+    glm::dvec3 forward = glm::normalize(target - eye), right = glm::normalize(glm::cross(forward, {0, 1, 0})),
+               up = glm::cross(right, forward);
+    auto meanOf = [&](glm::dvec3 centre, double radius) {
+        glm::dvec3 d = centre - eye;
+        double z = glm::dot(d, forward);
+        double px = (1 + glm::dot(d, right) / z / (tanHalf * aspect)) / 2 * W;
+        double py = (1 - glm::dot(d, up) / z / tanHalf) / 2 * H;
+        double pr = 0.7 * radius / glm::length(d) / tanHalf * H / 2;
+        glm::dvec3 sum(0);
+        int n = 0;
+        for (int y = int(py - pr); y <= int(py + pr); ++y)
+            for (int x = int(px - pr); x <= int(px + pr); ++x)
+                if (std::hypot(x + 0.5 - px, y + 0.5 - py) < pr) {
+                    ++n;
+                    for (int c = 0; c < 3; ++c) sum[c] += rg::srgbToLinear(png.at(x, y)[c] / 255.0);
+                }
+        return sum / double(n);
+    };
+    glm::dvec3 small = meanOf({0.95, 0.202, 0.7}, 0.2), large = meanOf({1.35, 0.402, -0.3}, 0.4);
+    EXPECT_GT(small.r, small.g) << "the small ball should be amber too";
+    EXPECT_GT(small.g, small.b);
+    EXPECT_GT(large.r / large.g, 1.3 * small.r / small.g) << "the larger ball should be redder";
+    EXPECT_LT(large.b / large.r, small.b / small.r) << "and keep less blue against its red";
+}
