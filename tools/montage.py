@@ -6,10 +6,12 @@ applies RayGlass's one display transform (shared/core/display.h: clamp to [0, 1]
 then sRGB) and writes an 8-bit PNG, with a gap between the panels (numpy and
 PIL: Debian's python3-numpy and python3-pil).
 
-    tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N]
+    tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N] [--stack]
 
 --scale N draws each pixel as an N x N square, so that single pixels (a
-staircase at an edge, chapter 04's antialiasing) can be seen.
+staircase at an edge, chapter 04's antialiasing) can be seen. --stack puts
+the panels one above the other, so that a page's column shows each at full
+width (chapter 12's mip levels).
 """
 import sys
 
@@ -65,12 +67,18 @@ def main(argv):
                 return 2
             del args[i:i + 2]
     gap, scale = options["--gap"], options["--scale"]
+    stack = "--stack" in args
+    if stack:
+        args.remove("--stack")
     if len(args) < 2:
-        print("usage: tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N]", file=sys.stderr)
+        print("usage: tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N] [--stack]",
+              file=sys.stderr)
         return 2
     out, inputs = args[0], [read_pfm(p) for p in args[1:]]
     if scale > 1:  # each pixel an N x N square
         inputs = [image.repeat(scale, axis=0).repeat(scale, axis=1) for image in inputs]
+    if stack:  # one above the other: transpose, lay out side by side, transpose back
+        inputs = [image.transpose(1, 0, 2) for image in inputs]
     height = max(image.shape[0] for image in inputs)
     width = sum(image.shape[1] for image in inputs) + gap * (len(inputs) - 1)
     canvas = np.full((height, width, 3), 255, dtype=np.uint8)  # white gaps
@@ -79,6 +87,8 @@ def main(argv):
         h, w = image.shape[:2]
         canvas[:h, x0:x0 + w] = to_display8(image)
         x0 += w + gap
+    if stack:
+        canvas = np.ascontiguousarray(canvas.transpose(1, 0, 2))
     Image.fromarray(canvas, "RGB").save(out, optimize=True)
     return 0
 
