@@ -29,19 +29,15 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                  "Spheres as icospheres subdivided this often (0: analytic spheres)", 0,
                  7)
         .live = false;  // the acceleration structures are built once
-    if (chapter.meshes) {  // chapters 12 on; both fixed for the run
-        params
-            .choice("--triangles", settings.triangles,
-                    "Ray-triangle test: the driver's own, or boxes and Woop, Benthin and "
-                    "Wald's watertight test in an intersection shader",
-                    {"builtin", "watertight"})
-            .live = false;
-        params
-            .choice("--mips", settings.mips,
-                    "Textures' mip levels, chosen per hit by ray cones; off: the full "
-                    "size only (aliases where a texture is far)",
-                    {"on", "off"})
-            .live = false;
+    if (chapter.meshes) {  // chapters 12 on; both fixed for the run (no live edit)
+        params.choice("--triangles", settings.triangles,
+                      "Ray-triangle test: the driver's own, or boxes and Woop, Benthin "
+                      "and Wald's watertight test in an intersection shader",
+                      {"builtin", "watertight"}).live = false;
+        params.choice("--mips", settings.mips,
+                      "Textures' mip levels, chosen per hit by ray cones; off: the full "
+                      "size only (aliases where a texture is far)",
+                      {"on", "off"}).live = false;
     }
     enum { kAuto, kOn, kOff };  // --antialias, as chapter 04
     int antialias = kAuto;
