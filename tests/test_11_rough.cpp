@@ -5,6 +5,8 @@
 // Sobol sequence, which continues across frames), and runs repeat exactly.
 #include "harness.h"
 
+#include <glm/glm.hpp>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -124,3 +126,55 @@ TEST(Chapter11, BadPatternAndSampleCountAreRejected) {
 }
 
 }  // namespace
+
+// Page 11's "what you should see": the small blue sphere is the default
+// scene's only rough surface, and its reflection is blurred. The scene
+// again with the blue material's roughness 0 is the sharp picture: what
+// differs lies on the blue sphere's disc (projected from the scene's
+// camera here) or where the mirror and the glass show it, and on the disc
+// the rough picture's neighbouring pixels differ less than the sharp one's.
+TEST(Chapter11, TheBlueSphereIsTheOneRoughSurfaceAndBlursItsReflection) {
+    std::string dir = rgtest::outputDir("11_blue");
+    std::ifstream in(RG_SOURCE_DIR "/assets/scenes/default.json");
+    nlohmann::json scene = nlohmann::json::parse(in);
+    scene["materials"]["blue"]["roughness"] = 0.0;
+    std::ofstream(dir + "/sharp.json") << scene.dump();
+    const int W = 320, H = 180;
+    auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args = {"--headless", "--validation", "--width", std::to_string(W), "--height",
+                                         std::to_string(H), "--frames", "8", "--output", dir + "/" + name + ".png"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        rgtest::RunResult r = rgtest::run(RG_EXE_11, args);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return rgtest::readPng(dir + "/" + name + ".png");
+    };
+    rgtest::Png rough = render("rough", {}), sharp = render("sharp_image", {"--scene", dir + "/sharp.json"});
+    ASSERT_EQ(rough.width, W);
+    // the blue sphere (centre (0.9, 0.35, 1.6), radius 0.35) seen from (0, 1.6, 6) at 45 degrees
+    const glm::dvec3 eye(0, 1.6, 6), centre(0.9, 0.35, 1.6);
+    glm::dvec3 forward = glm::normalize(glm::dvec3(0, 0.9, 0) - eye),
+               right = glm::normalize(glm::cross(forward, {0, 1, 0})), up = glm::cross(right, forward);
+    const double tanHalf = std::tan(22.5 * 3.14159265358979 / 180);
+    glm::dvec3 d = centre - eye;
+    double z = glm::dot(d, forward);
+    double px = (1 + glm::dot(d, right) / z / (tanHalf * W / H)) / 2 * W,
+           py = (1 - glm::dot(d, up) / z / tanHalf) / 2 * H, pr = 0.35 / glm::length(d) / tanHalf * H / 2;
+    int onDisc = 0, differOnDisc = 0, differ = 0;
+    double rippleRough = 0, rippleSharp = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x + 1 < W; ++x) {
+            bool disc = std::hypot(x + 0.5 - px, y + 0.5 - py) < 0.8 * pr;
+            bool apart = false;
+            for (int c = 0; c < 3; ++c) apart = apart || std::abs(rough.at(x, y)[c] - sharp.at(x, y)[c]) > 2;
+            differ += apart;
+            if (!disc) continue;
+            ++onDisc, differOnDisc += apart;
+            for (int c = 0; c < 3; ++c) {
+                rippleRough += std::abs(rough.at(x + 1, y)[c] - rough.at(x, y)[c]);
+                rippleSharp += std::abs(sharp.at(x + 1, y)[c] - sharp.at(x, y)[c]);
+            }
+        }
+    EXPECT_GT(differOnDisc, onDisc / 4) << "the blue sphere's reflection should change with its roughness";
+    EXPECT_LT(differ, W * H / 20) << "only the blue sphere (and its images) should be rough";
+    EXPECT_LT(rippleRough, 0.8 * rippleSharp) << "the rough reflection should be blurred";
+}
