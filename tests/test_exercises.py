@@ -2,7 +2,8 @@
 """Every exercise (exercises/NN_name.glsl, tools/exercise.py) as a reader
 meets it: the starter compiles and the chapter renders it (--shader-source,
 headless, validation on), and its picture differs from the chapter's where
-the stage shows (at least 1 % of pixels by more than 2 codes); the solution,
+the stage shows (at least 0.5 % of pixels by more than 2 codes: the rough
+lobe of chapter 11 is one small sphere's reflection, 1.2 % on lavapipe); the solution,
 written into the same copy, draws the build's picture to the bit, so the
 copy and --shader-source change nothing else. A starter broken by a typo
 is refused with one line naming its file and line, exit 2.
@@ -45,7 +46,7 @@ def check(chapter, bin_dir, work):
     starter = render(bin_dir, chapter, work / f"{chapter}_starter.png", ["--shader-source", str(tree)])
     differ = (numpy.abs(starter - build).max(axis=2) > 2).mean()
     print(f"{chapter}: the starter differs from the chapter in {100 * differ:.1f} % of pixels")
-    if differ < 0.01:
+    if differ < 0.005:
         return f"{chapter}: the starter draws the chapter's picture (only {100 * differ:.2f} % of pixels differ)"
     exercise(chapter, tree, solution=True)
     solved = render(bin_dir, chapter, work / f"{chapter}_solution.png", ["--shader-source", str(tree)])
@@ -75,13 +76,11 @@ def main(argv):
         return 2
     bin_dir = pathlib.Path(argv[1]).resolve()
     chapters = sorted(p.stem for p in (ROOT / "exercises").glob("*.glsl"))
-    failures = []
     with tempfile.TemporaryDirectory(prefix="rayglass-exercises-") as folder:
         work = pathlib.Path(folder)
-        for problem in [check(c, bin_dir, work) for c in chapters] + [broken(bin_dir, work)]:
-            if problem:
-                failures.append(problem)
-                print("FAIL " + problem)
+        problems = [check(c, bin_dir, work) for c in chapters] + [broken(bin_dir, work)]
+    failures = [p for p in problems if p]
+    print("".join(f"FAIL {p}\n" for p in failures), end="")
     return 1 if failures else 0
 
 
