@@ -129,6 +129,7 @@ void padBox(BoxItem& item) {
 }  // namespace
 
 ReferenceRenderer::ReferenceRenderer(const Scene& scene) : scene_(scene) {
+    for (const auto& t : scene.textures) rayCones_ = rayCones_ || t->levels.size() > 1;
     // chapter 12: in double, each with its triangles' tree
     for (const auto& mesh : scene.meshes) {
         MeshData& m = meshes_.emplace_back();

@@ -228,6 +228,8 @@ private:
     // |translation| + largest scale: the magnitude of its numbers
     std::vector<double> objectSize_;
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
+    // as the GPU's kRayCones: some texture has mip levels (textureAt)
+    bool rayCones_ = false;
     std::vector<double> sky_;  // linear RGB
 };
 

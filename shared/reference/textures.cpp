@@ -90,10 +90,8 @@ void ReferenceRenderer::textureAt(ReferenceHit& hit, const glm::dvec3& direction
     const Object& obj = scene_.objects[hit.object];
     if (hit.t < 0 || obj.type != ShapeType::Mesh || meshes_[obj.mesh].texcoords.empty())
         return;
-    bool cones = false;  // as the GPU's kRayCones: any texture with mip levels
-    for (const auto& t : scene_.textures) cones = cones || t->levels.size() > 1;
-    textureHit(obj, hit.triangle, hit.weights, cones ? coneLod(hit, direction, cone) : 0,
-               hit);
+    textureHit(obj, hit.triangle, hit.weights,
+               rayCones_ ? coneLod(hit, direction, cone) : 0, hit);
 }
 
 void ReferenceRenderer::textureHit(const Object& obj, uint32_t triangle,
