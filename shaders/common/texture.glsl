@@ -34,10 +34,8 @@ int wrapTexel(int i, int n, uint mode) {
 }
 // [end]
 
-// Texel (x, y) of mip level `level`, whose size is level 0's halved
-// `level` times (at least 1): decoded to linear light.
-vec4 texel(uvec4 t, int level, int x, int y) {
-    int w = max(int(t.y) >> level, 1), h = max(int(t.z) >> level, 1);
+// Texel (x, y) of mip level `level`, w x h texels: decoded to linear light.
+vec4 texel(uvec4 t, int level, int w, int h, int x, int y) {
     x = wrapTexel(x, w, t.w & 3u);
     y = wrapTexel(y, h, (t.w >> TEXTURE_V_SHIFT) & 3u);
     vec4 v = texelFetch(textures[nonuniformEXT(t.x)], ivec2(x, y), level);
@@ -48,18 +46,20 @@ vec4 texel(uvec4 t, int level, int x, int y) {
     return v;
 }
 
-// One level, bilinear (or the nearest texel).
+// One level, bilinear (or the nearest texel). Its size is level 0's halved
+// `level` times, at least 1.
 vec4 sampleLevel(uvec4 t, vec2 uv, int level, bool nearest) {
     int w = max(int(t.y) >> level, 1), h = max(int(t.z) >> level, 1);
     float x = wrapCoordinate(uv.x, t.w & 3u) * float(w);
     float y = wrapCoordinate(uv.y, (t.w >> TEXTURE_V_SHIFT) & 3u) * float(h);
-    if (nearest) return texel(t, level, int(floor(x)), int(floor(y)));
+    if (nearest) return texel(t, level, w, h, int(floor(x)), int(floor(y)));
     x -= 0.5;
     y -= 0.5;  // between the four nearest texel centres
     int x0 = int(floor(x)), y0 = int(floor(y));
     float fx = x - float(x0), fy = y - float(y0);
-    return mix(mix(texel(t, level, x0, y0), texel(t, level, x0 + 1, y0), fx),
-               mix(texel(t, level, x0, y0 + 1), texel(t, level, x0 + 1, y0 + 1), fx),
+    return mix(mix(texel(t, level, w, h, x0, y0), texel(t, level, w, h, x0 + 1, y0), fx),
+               mix(texel(t, level, w, h, x0, y0 + 1),
+                   texel(t, level, w, h, x0 + 1, y0 + 1), fx),
                fy);
 }
 
