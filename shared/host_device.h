@@ -221,10 +221,12 @@ RG_SIZE(GpuMaterial, 192);
 #define SPECTRUM_WEIGHT_SCALE 3.1162108, 3.9394087, 4.1209583
 
 struct GpuLight {
-    vec4 position;
-    vec4 intensity;
+    vec4 position;   // xyz; w: LIGHT_* (a directional light: where its light travels)
+    vec4 intensity;  // the thesis's I_i; chapter 14: W/sr, or a sun's irradiance (W/m^2)
 };
 RG_SIZE(GpuLight, 32);
+#define LIGHT_POINT 1.0        // position.w: a point light
+#define LIGHT_DIRECTIONAL 2.0  // chapter 14: a sun, position.xyz its unit direction
 
 // Chapter 10's launches: one traces every pixel's whole ray tree; or the
 // first traces each pixel's camera ray and queues the trees that go on, and
@@ -256,8 +258,12 @@ struct RtPush {
     float exposure;
     // 1: each frame's camera rays pass a new point of the pixel (--antialias, chapter 04)
     uint antialias;
+    // chapter 14: the photon map's PhotonMapHeader by device address (0: none)
+    uvec2 photonMap;
+    float photonRadius;  // this frame's gathering radius (world units)
+    uint photonsEmitted;  // photons traced from the lights this frame
 };
-RG_SIZE(RtPush, 48);
+RG_SIZE(RtPush, 64);
 
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {
@@ -290,6 +296,57 @@ RG_SIZE(QueuedTree, 128);
 // The queue's first 16 bytes: the second launch's VkTraceRaysIndirectCommandKHR
 // (count, 1, 1), whose width the first launch counts up, then the capacity.
 #define TREE_QUEUE_HEADER_BYTES 16u
+
+// ---- Chapter 14: the caustic photon map ------------------------------------
+// A photon stored where it landed on a diffuse surface after at least one
+// mirror or glass: its power (watts, already divided by the photons emitted)
+// and the side of the surface it arrived from.
+struct Photon {
+    vec3 position;
+    uint normal;  // packSnorm4x8 of the unit normal on the side it came from
+    vec3 power;
+    uint unused;
+};
+RG_SIZE(Photon, 32);
+
+// Where photons are aimed (a projection map, Jensen 1996): for each light
+// and each glass or mirror, the bounding sphere of that object.
+struct PhotonEmitter {
+    vec4 target;  // the bounding sphere's centre, radius (world)
+    uint light;     // index into lights[]
+    // a sun's photons start this far before the sphere's centre, beyond
+    // every object on their way (at most 1000 radii: float's precision)
+    float backoff;
+    // this emitter's share of the photons, and the running sum of the
+    // shares up to and including it
+    float probability;
+    float cumulative;
+};
+RG_SIZE(PhotonEmitter, 32);
+
+// The photon map's first bytes; the rest is reached by device address.
+// `cells` is the hash grid: cellCount counts, then (after the prefix sum
+// and the scatter) where each cell's photons end in `sorted`.
+struct PhotonMapHeader {
+    uint stored;        // photons stored this frame (atomic; may pass capacity)
+    uint capacity;
+    uint cellCount;     // a power of two
+    uint emitterCount;
+    uvec2 photons;      // Photon[capacity], in the order they were stored
+    uvec2 sorted;       // Photon[capacity], by cell
+    uvec2 cells;        // uint[cellCount]
+    uvec2 emitters;     // PhotonEmitter[emitterCount]
+};
+RG_SIZE(PhotonMapHeader, 48);
+
+// The grid's compute shaders' push constants.
+struct GridPush {
+    uvec2 photonMap;
+    float cellSize;  // twice the gathering radius: a gather reads 2x2x2 cells
+    uint unused;
+};
+RG_SIZE(GridPush, 16);
+#define GRID_GROUP_SIZE 128  // invocations per workgroup (every device has 128)
 
 #ifdef __cplusplus
 }  // namespace rg::gpu

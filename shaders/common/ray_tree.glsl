@@ -185,9 +185,22 @@ void growBranch() {
 #endif
     // [end]
     Split s = splitBetween(m, n1, n2, ns, b.direction);
+#ifdef PHOTON_MAP
+    // [region caustic_light]
+    // chapter 14: direct light in watts, and the caustic light of the
+    // photons that landed here, reflected by Lambert's kd / pi
+    if (s.highlight > 0.0)
+        tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,
+                                                  s.highlight, tree.rays);
+    if (s.local > 0.0)
+        tree.radiance +=
+            throughput * s.local * m.kd.rgb / kPi * causticIrradiance(p, n);
+    // [end]
+#else
     if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
         tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local,
                                                    s.highlight, tree.rays);
+#endif
     if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
     // [region refract]

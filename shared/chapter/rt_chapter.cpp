@@ -68,6 +68,12 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                             std::chrono::steady_clock::now() - loadStart)
                             .count();
         if (!chapter.meshes) refuseMeshes(scene);
+        if (chapter.physicalLights) {
+            requirePhysicalLights(scene);
+            if (!scene.ambientGiven) scene.ambient = glm::dvec3(0);  // radiometry: none
+        } else {
+            refusePhysicalLights(scene);
+        }
         if (settings.mips == 1) keepLevelZero(scene);  // --mips off
         if (chapter.stage == ReferenceStage::Media) refuseUnstackableMedia(scene);
         App app;
@@ -138,6 +144,11 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
             canTwo ? createTwoLaunches(app.gpu, app.deletion, rt.descriptors.layout,
                                        shaders, rt.width * rt.height)
                    : TwoLaunches{};
+        // Chapter 14's photon map: traced and gathered into a grid before each
+        // frame's camera rays.
+        FramePass pass = chapter.framePass
+                             ? chapter.framePass({app, scene, rt, shaders})
+                             : FramePass{};
         FrameLoop loop(app.gpu, app.window.get(), target,
                        VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         // a window's camera, overlay and keys
@@ -172,6 +183,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .exposure = std::exp2(settings.exposure),
                 .antialias = jitter,
             };
+            if (pass.record) pass.record(cmd, push, push.accumulated);
             last = push;
             if (canTwo)
                 recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, size.width,
@@ -210,6 +222,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                 {"alpha_test", alphaTest},
                                 {"thin_walls", thinWalls},
                                 {"ray_cones", rayCones}};
+        if (pass.finish) extra.update(pass.finish());
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},
                                              {"pixels", rt.width * rt.height},

@@ -3,7 +3,10 @@
 #pragma once
 #include "core/cli.h"
 #include "core/params.h"
+#include "host_device.h"
 #include "reference/reference.h"
+
+#include <vulkan/vulkan.h>
 
 #include <functional>
 #include <string>
@@ -34,6 +37,29 @@ struct RtChapterSettings {
     int mips = 0;
 };
 
+struct App;
+struct RtScene;
+struct RtShaders;
+
+// Chapter 14 on: a pass of the chapter's own recorded before each frame's
+// camera rays (the photon map), made once the scene is on the GPU.
+struct FramePass {
+    // Records the pass for a frame; it may fill the push constants' fields
+    // the camera rays read (the photon map's address, the radius).
+    // `accumulated`: frames already averaged into the picture.
+    std::function<void(VkCommandBuffer cmd, gpu::RtPush& push, uint32_t accumulated)>
+        record;
+    // After the last frame: writes what the pass keeps (chapter 14's
+    // --photons-ply) and returns its part of the run's report.
+    std::function<nlohmann::json()> finish;
+};
+struct FramePassContext {
+    App& app;
+    const Scene& scene;
+    const RtScene& rt;
+    const RtShaders& shaders;  // the camera rays' (specialized as theirs)
+};
+
 struct RtChapter {
     std::string name;         // "05_ambient": the executable, its shader folder
     std::string description;  // for --help
@@ -47,6 +73,11 @@ struct RtChapter {
     // Declares the chapter's own parameters (chapter 06: --fixed-epsilon,
     // ...): each is a command-line option and a control in the overlay.
     std::function<void(Params&, RtChapterSettings&)> options;
+    // chapter 14 on: lights in physical units (power, irradiance), no
+    // ambient light unless the scene gives it; earlier chapters refuse them
+    bool physicalLights = false;
+    // chapter 14 on: made once the scene is uploaded (FramePass)
+    std::function<FramePass(const FramePassContext&)> framePass;
 };
 
 int runRtChapter(int argc, char** argv, const RtChapter& chapter);

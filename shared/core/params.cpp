@@ -61,6 +61,14 @@ Param& Params::toggle(const std::string& flag, bool& value, const std::string& h
                 .inverted = inverted});
 }
 
+Param& Params::text(const std::string& flag, std::string& value, const std::string& help) {
+    return add({.kind = Param::Kind::Text,
+                .flag = flag,
+                .help = help,
+                .text = &value,
+                .live = false});
+}
+
 void Params::addTo(CLI::App& app) const {
     for (const Param& p : params_) {
         CLI::Option* option = nullptr;
@@ -93,12 +101,15 @@ void Params::addTo(CLI::App& app) const {
             else
                 option = app.add_flag(p.flag, *p.toggle, p.help);
             break;
+        case Param::Kind::Text:
+            option = app.add_option(p.flag, *p.text, p.help);
+            break;
         }
         if (p.check) option->check(p.check);
         if (p.kind == Param::Kind::Choice)
             option->description(p.help + " (default: " + p.choices[size_t(*p.integer)] +
                                 ")");
-        else if (p.kind != Param::Kind::Toggle)
+        else if (p.kind != Param::Kind::Toggle && p.kind != Param::Kind::Text)
             option->capture_default_str();
     }
 }
@@ -112,6 +123,7 @@ nlohmann::json Params::values() const {
         case Param::Kind::Number: value = *p.number; break;
         case Param::Kind::Choice: value = p.choices[size_t(*p.integer)]; break;
         case Param::Kind::Toggle: value = *p.toggle != p.inverted; break;
+        case Param::Kind::Text: value = *p.text; break;
         }
     }
     return out;

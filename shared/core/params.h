@@ -14,7 +14,7 @@
 namespace rg {
 
 struct Param {
-    enum class Kind { Integer, Number, Choice, Toggle };
+    enum class Kind { Integer, Number, Choice, Toggle, Text };
     Kind kind = Kind::Integer;
     std::string flag;   // "--depth"
     std::string label;  // the overlay's name for it: "depth"
@@ -22,6 +22,7 @@ struct Param {
     int* integer = nullptr;    // Integer and Choice (the index into choices)
     float* number = nullptr;   // Number
     bool* toggle = nullptr;    // Toggle
+    std::string* text = nullptr;  // Text: a path (chapter 14's --photons-ply)
     double min = 0, max = 0;   // Integer and Number
     bool logarithmic = false;  // Number: a log slider (0 still allowed: "off")
     bool inverted = false;     // Toggle: the flag clears the value (--no-accumulate)
@@ -45,6 +46,8 @@ public:
                   std::vector<std::string> choices);
     Param& toggle(const std::string& flag, bool& value, const std::string& help,
                   bool inverted = false);
+    // A file to write (read at start only: the overlay shows it greyed).
+    Param& text(const std::string& flag, std::string& value, const std::string& help);
 
     // Adds every parameter to the command line, with its default shown.
     void addTo(CLI::App& app) const;

@@ -132,8 +132,12 @@ static_assert(uint32_t(Glass::Diamond) == GLASS_DIAMOND &&
 
 std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
     std::vector<gpu::GpuLight> lights;
-    for (const auto& l : scene.lights)
-        lights.push_back({v4(l.position, 1), v4(l.intensity)});
+    for (const auto& l : scene.lights) {
+        if (l.kind == PointLight::Kind::Directional)  // chapter 14's sun
+            lights.push_back({v4(l.direction, LIGHT_DIRECTIONAL), v4(l.irradiance)});
+        else
+            lights.push_back({v4(l.position, LIGHT_POINT), v4(l.intensity)});
+    }
     return lights;
 }
 

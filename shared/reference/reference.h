@@ -22,7 +22,8 @@ enum class ReferenceStage {
     Fresnel = 9,
     Refraction = 10,
     Rough = 11,
-    Media = 13
+    Media = 13,
+    Caustics = 14  // chapter 13's media, lights in watts, and a photon map
 };  // chapter 12 renders Rough on meshes
 
 // Chapter 13: the media a ray is inside, the last entered at the back

@@ -90,4 +90,20 @@ void refuseMeshes(const Scene& scene) {
                 ": triangle meshes come in chapter 12; run 12_triangle_meshes");
 }
 
+void refusePhysicalLights(const Scene& scene) {
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].kind != PointLight::Kind::Thesis)
+            throw InputError(scene.path + ": lights[" + std::to_string(i) +
+                             "]: lights in physical units (power, irradiance) come in "
+                             "chapter 14; run 14_caustics");
+}
+
+void requirePhysicalLights(const Scene& scene) {
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].kind == PointLight::Kind::Thesis)
+            throw InputError(scene.path + ": lights[" + std::to_string(i) +
+                             "]: chapter 14 needs lights in physical units: a point "
+                             "light's \"power\" in watts, or a directional light");
+}
+
 }  // namespace rg

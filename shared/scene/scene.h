@@ -27,9 +27,19 @@ struct Sky {
     glm::dvec3 top{0.25, 0.45, 0.85}, horizon{0.8, 0.85, 0.9}, bottom{0.2, 0.18, 0.15};
 };
 
+// A light: the thesis's point light (chapters 06-13), or chapter 14's
+// lights in physical units (docs/14_caustics.md, "Radiometry").
 struct PointLight {
+    enum class Kind {
+        Thesis,      // intensity: the thesis's radiance scale I_i, no falloff
+        Point,       // "power" in watts: intensity = power / 4 pi (W/sr), E falls as 1/r^2
+        Directional  // a sun: irradiance on a surface facing it, from `direction`
+    };
+    Kind kind = Kind::Thesis;
     glm::dvec3 position{0, 5, 0};
-    glm::dvec3 intensity{1, 1, 1};  // linear radiance scale I_i
+    glm::dvec3 intensity{1, 1, 1};  // Thesis: I_i; Point: radiant intensity, W/sr
+    glm::dvec3 direction{0, -1, 0};  // Directional: where its light travels (unit)
+    glm::dvec3 irradiance{0};        // Directional: W/m^2 on a surface facing it
 };
 
 // Chapter 13: the glasses with a measured dispersion (host_device.h's GLASS_*).
@@ -109,6 +119,7 @@ struct Scene {
     Camera camera;
     Sky sky;
     glm::dvec3 ambient{0.1, 0.1, 0.1};  // I_a (ch 05)
+    bool ambientGiven = false;          // the file names it (chapter 14: else 0)
     std::vector<PointLight> lights;
     std::vector<Material> materials;
     std::vector<Object> objects;
@@ -173,6 +184,13 @@ Scene loadScene(const std::string& path);
 // Chapters before 12 draw spheres and quads only: throws InputError naming
 // the first mesh object and chapter 12.
 void refuseMeshes(const Scene& scene);
+
+// Chapters before 14 light the thesis's way: throws InputError naming the
+// first light in physical units ("power", a directional light) and chapter 14.
+void refusePhysicalLights(const Scene& scene);
+// Chapter 14 lights in physical units only: throws InputError naming the
+// first light given the thesis's way ("intensity" without units).
+void requirePhysicalLights(const Scene& scene);
 
 // Chapter 13's medium stack holds material indices in 8 bits (media.glsl):
 // throws InputError naming the first transmitting material past index 254.

@@ -157,19 +157,45 @@ Scene loadScene(const std::string& path) {
         if (k.contains("bottom"))
             s.sky.bottom = r.vec3(k["bottom"], "sky.bottom", 0, kHuge);
     }
-    if (j.contains("ambient")) s.ambient = r.vec3(j["ambient"], "ambient", 0, kHuge);
+    if (j.contains("ambient")) {
+        s.ambient = r.vec3(j["ambient"], "ambient", 0, kHuge);
+        s.ambientGiven = true;
+    }
 
     if (j.contains("lights")) {
         if (!j["lights"].is_array()) r.fail("lights", "must be an array");
         for (size_t i = 0; i < j["lights"].size(); ++i) {
             const json& l = j["lights"][i];
             std::string key = "lights[" + std::to_string(i) + "]";
-            r.onlyKeys(l, key, {"position", "intensity"});
             PointLight light;
+            if (l.contains("type") && r.string(l["type"], key + ".type") != "point") {
+                // Chapter 14: a sun, far enough that its rays are parallel.
+                if (r.string(l["type"], key + ".type") != "directional")
+                    r.fail(key + ".type", "must be \"point\" or \"directional\"");
+                r.onlyKeys(l, key, {"type", "direction", "irradiance", "comment"});
+                light.kind = PointLight::Kind::Directional;
+                if (!l.contains("direction")) r.fail(key + ".direction", "missing");
+                glm::dvec3 d = r.vec3(l["direction"], key + ".direction");
+                if (!(glm::length(d) > 0)) r.fail(key + ".direction", "must not be 0");
+                light.direction = glm::normalize(d);
+                if (!l.contains("irradiance")) r.fail(key + ".irradiance", "missing");
+                light.irradiance = r.vec3(l["irradiance"], key + ".irradiance", 0, kHuge);
+                s.lights.push_back(light);
+                continue;
+            }
+            r.onlyKeys(l, key, {"type", "position", "intensity", "power", "comment"});
             if (!l.contains("position")) r.fail(key + ".position", "missing");
             light.position = r.vec3(l["position"], key + ".position");
+            if (l.contains("intensity") && l.contains("power"))
+                r.fail(key + ".power", "give power (watts, chapter 14) or intensity, "
+                                       "not both");
             if (l.contains("intensity"))
                 light.intensity = r.vec3(l["intensity"], key + ".intensity", 0, kHuge);
+            if (l.contains("power")) {  // radiated evenly: power / 4 pi per steradian
+                light.kind = PointLight::Kind::Point;
+                light.intensity = r.vec3(l["power"], key + ".power", 0, kHuge) /
+                                  (4.0 * 3.14159265358979323846);
+            }
             s.lights.push_back(light);
         }
     }

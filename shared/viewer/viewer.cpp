@@ -370,9 +370,17 @@ void Viewer::screenshot(uint32_t frame) {
     report["lights"] = nlohmann::json::array();  // as the View and light section has them
     for (const PointLight& l : scene_.lights) {
         glm::dvec3 p = l.position - scene_.origin;  // the scene file's coordinates
-        report["lights"].push_back(
-            {{"position", {p.x, p.y, p.z}},
-             {"intensity", {l.intensity.r, l.intensity.g, l.intensity.b}}});
+        auto array = [](const glm::dvec3& v) { return nlohmann::json{v.x, v.y, v.z}; };
+        if (l.kind == PointLight::Kind::Directional)  // as the scene format writes them
+            report["lights"].push_back({{"type", "directional"},
+                                        {"direction", array(l.direction)},
+                                        {"irradiance", array(l.irradiance)}});
+        else if (l.kind == PointLight::Kind::Point)
+            report["lights"].push_back(
+                {{"position", array(p)}, {"power", array(l.intensity * (4 * M_PI))}});
+        else
+            report["lights"].push_back(
+                {{"position", array(p)}, {"intensity", array(l.intensity)}});
     }
     writeReport(stem + ".json", report);
     std::printf("F2: wrote %s.png and %s.json\n", stem.c_str(), stem.c_str());

@@ -105,6 +105,9 @@ void Viewer::parameterControls(const std::string& section) {
         case Param::Kind::Toggle:
             edited = ImGui::Checkbox(label, p.toggle);
             break;
+        case Param::Kind::Text:  // a file written at the end: shown, not edited
+            ImGui::Text("%s: %s", label, p.text->empty() ? "-" : p.text->c_str());
+            break;
         }
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
@@ -137,8 +140,25 @@ void Viewer::viewControls() {
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
         PointLight& light = scene_.lights[i];
         ImGui::PushID(int(i));
-        glm::vec3 at = glm::vec3(light.position - scene_.origin);  // file = p - origin
         std::string label = "light " + std::to_string(i + 1);
+        if (light.kind == PointLight::Kind::Directional) {  // chapter 14's sun
+            glm::vec3 d = glm::vec3(light.direction);
+            if (ImGui::DragFloat3(label.c_str(), &d.x, 0.01f, -1, 1, "%.2f") &&
+                glm::length(d) > 0) {
+                light.direction = glm::normalize(glm::dvec3(d));
+                lightsDirty_ = true;
+            }
+            float e[3] = {float(light.irradiance.r), float(light.irradiance.g),
+                          float(light.irradiance.b)};
+            if (ImGui::ColorEdit3("irradiance", e,
+                                  ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+                light.irradiance = glm::max(glm::dvec3(e[0], e[1], e[2]), glm::dvec3(0));
+                lightsDirty_ = true;
+            }
+            ImGui::PopID();
+            continue;
+        }
+        glm::vec3 at = glm::vec3(light.position - scene_.origin);  // file = p - origin
         if (ImGui::DragFloat3(label.c_str(), &at.x, speed, 0, 0, "%.2f")) {
             light.position = glm::dvec3(at) + scene_.origin;
             // Typed past 1e7 from the eye, with shaders built without the
@@ -146,10 +166,11 @@ void Viewer::viewControls() {
             if (fastSizes_) light.position = glm::clamp(light.position, -1e7, 1e7);
             lightsDirty_ = true;
         }
+        // chapter 14's point lights: radiant intensity, W/sr (power / 4 pi)
         float v[3] = {float(light.intensity.r), float(light.intensity.g),
                       float(light.intensity.b)};
-        if (ImGui::ColorEdit3("intensity", v,
-                              ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+        if (ImGui::ColorEdit3(light.kind == PointLight::Kind::Point ? "W/sr" : "intensity",
+                              v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
             light.intensity = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(0));
             lightsDirty_ = true;
         }

@@ -1,0 +1,52 @@
+// Chapter 14: direct light in physical units. A point light of power P
+// radiates P / 4pi watts per steradian (its intensity I); a surface at
+// distance r, turned by theta from it, receives the irradiance
+// E = I cos(theta) / r^2 (W/m^2). A sun gives E = E_sun cos(theta), the
+// same everywhere. A diffuse surface of albedo kd reflects the radiance
+// kd / pi E (Lambert: the 1/pi makes the light it sends out over the
+// hemisphere kd E, never more than arrived).
+#ifndef RADIOMETRY_GLSL
+#define RADIOMETRY_GLSL
+
+// Nothing between `origin` and the sun in direction l (a shadow ray to infinity).
+bool sunVisible(vec3 origin, vec3 l) {
+    shadowPayload = 1u;
+    traceRayEXT(tlas,
+                kRayFlags | gl_RayFlagsTerminateOnFirstHitEXT |
+                    gl_RayFlagsSkipClosestHitShaderEXT,
+                0xFF, RAY_TYPE_SHADOW, 0, MISS_SHADOW, origin, 0.0, l, kInfinity, 1);
+    return shadowPayload == 0u;
+}
+
+// [region direct]
+// The local model of chapter 09 (the shares `local` and `highlight`), in
+// radiometric terms: Lambert's kd / pi, and Blinn-Phong's lobe normalized
+// so that it reflects at most ks of the light, (s + 8) / (8 pi) (n.h)^s
+// (Akenine-Moller et al., Real-Time Rendering, 9.8), each times E.
+vec3 directLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
+                 float local, float highlight, inout uint rays) {
+    vec3 sum = local * ambientTerm(m);  // ambient: 0 unless the scene gives it
+    vec3 origin = secondaryOrigin(p, error, n);
+    for (uint i = 0u; i < camera.counts.z; ++i) {
+        bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
+        vec3 toLight = lights[i].position.xyz - p;
+        vec3 l = sun ? -lights[i].position.xyz : safeNormalize(toLight);
+        float cosine = dot(ns, l);
+        if (cosine <= 0.0) continue;
+        // E on a surface facing the light: I / r^2, or the sun's
+        vec3 irradiance = sun ? lights[i].intensity.rgb
+                              : lights[i].intensity.rgb / dot(toLight, toLight);
+        float s = m.params.x;
+        vec3 brdf = local * m.kd.rgb / kPi +
+                    highlight * m.ks.rgb * (s + 8.0) / (8.0 * kPi) *
+                        specularPower(ns, normalize(l + v), s);
+        vec3 light = brdf * irradiance * cosine;
+        if (max(light.r, max(light.g, light.b)) < MIN_LIGHT) continue;
+        ++rays;
+        if (sun ? sunVisible(origin, l) : lightVisible(origin, lights[i].position.xyz))
+            sum += light;
+    }
+    return sum;
+}
+// [end]
+#endif
