@@ -336,8 +336,12 @@ struct PhotonMapHeader {
     uvec2 sorted;       // Photon[capacity], by cell
     uvec2 cells;        // uint[cellCount]
     uvec2 emitters;     // PhotonEmitter[emitterCount]
+    // the fates of the frame's photons, counted (the report; energy tests):
+    uint escaped;       // left the scene
+    uint lost;          // stopped by the bounce or pass limit
+    uint unused0, unused1;
 };
-RG_SIZE(PhotonMapHeader, 48);
+RG_SIZE(PhotonMapHeader, 64);
 
 // The grid's compute shaders' push constants.
 struct GridPush {

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
         rg::Scene scene = rg::toCameraSpace(rg::loadScene(
             opts.scene.empty() ? rg::defaultScenePath("default") : opts.scene));
         rg::refuseMeshes(scene);  // spheres and quads only, until chapter 12
+        rg::refusePhysicalLights(scene);  // the thesis's lights, until chapter 14
         rg::App app;
         rg::initApp(app, opts, "RayGlass 04: ray generation and miss");
         rg::Image target = rg::createImage2D(

@@ -23,12 +23,16 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <vector>
 
 namespace {
 using namespace rg;
 
 struct PhotonSettings {
+    enum { kOff, kPhotons };
+    int caustics = kPhotons;  // off: glass casts chapter 13's black shadow
     int photons = 100000;  // traced from the lights each frame
     float radius = 0;      // the first frame's gathering radius; 0: from the glasses' size
     // Knaus and Zwicker's alpha: each frame the radius^2 shrinks by
@@ -209,7 +213,10 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     constexpr VkAccessFlags readWrite = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     // The last frame's camera rays and grid are done with the map.
     memoryBarrier(cmd, rtStage | compute, readWrite, transfer, VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdFillBuffer(cmd, map.header.handle, 0, sizeof(uint32_t), 0);  // stored = 0
+    // stored = 0, and the fates' counts
+    vkCmdFillBuffer(cmd, map.header.handle, 0, sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, map.header.handle, offsetof(gpu::PhotonMapHeader, escaped),
+                    2 * sizeof(uint32_t), 0);
     vkCmdFillBuffer(cmd, map.cells.handle, 0, VK_WHOLE_SIZE, 0);
     memoryBarrier(cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, rtStage | compute, readWrite);
 
@@ -232,23 +239,29 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
 }
 // [end]
 
-// The last frame's stored photons, copied to the host (waits for the GPU).
-std::vector<gpu::Photon> readPhotons(const Gpu& gpu, DeletionQueue& deletion,
-                                     const PhotonMap& map) {
-    VkDeviceSize bytes = sizeof(uint32_t) + VkDeviceSize(map.capacity) * sizeof(gpu::Photon);
+// The last frame's photon map, copied to the host (waits for the GPU).
+struct LastPhotons {
+    gpu::PhotonMapHeader header{};  // its counts
+    std::vector<gpu::Photon> stored;
+};
+LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap& map) {
+    constexpr VkDeviceSize headerBytes = sizeof(gpu::PhotonMapHeader);
+    VkDeviceSize bytes = headerBytes + VkDeviceSize(map.capacity) * sizeof(gpu::Photon);
     Buffer host = createHostBuffer(gpu, deletion, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     submitOnce(gpu, [&](VkCommandBuffer cmd) {
         memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        VkBufferCopy count{.size = sizeof(uint32_t)};
-        vkCmdCopyBuffer(cmd, map.header.handle, host.handle, 1, &count);
-        VkBufferCopy photons{.dstOffset = sizeof(uint32_t), .size = bytes - sizeof(uint32_t)};
+        VkBufferCopy header{.size = headerBytes};
+        vkCmdCopyBuffer(cmd, map.header.handle, host.handle, 1, &header);
+        VkBufferCopy photons{.dstOffset = headerBytes, .size = bytes - headerBytes};
         vkCmdCopyBuffer(cmd, map.photons.handle, host.handle, 1, &photons);
     });
+    LastPhotons last;
     const auto* data = static_cast<const char*>(host.mapped);
-    uint32_t stored = std::min(*reinterpret_cast<const uint32_t*>(data), map.capacity);
-    const auto* first = reinterpret_cast<const gpu::Photon*>(data + sizeof(uint32_t));
-    return std::vector<gpu::Photon>(first, first + stored);
+    std::memcpy(&last.header, data, headerBytes);
+    const auto* first = reinterpret_cast<const gpu::Photon*>(data + headerBytes);
+    last.stored.assign(first, first + std::min(last.header.stored, map.capacity));
+    return last;
 }
 
 // --photons-ply: the photons as a point cloud (position, power in watts),
@@ -291,6 +304,10 @@ int main(int argc, char** argv) {
             rg::addDepthOption(params, s, 8);
             s.fresnelMode = 2;  // exact, as chapter 13
             rg::addSpectralOptions(params, s);
+            params.choice("--caustics", photons.caustics,
+                          "Light through glass: none (black shadows, as chapter 13) or "
+                          "photons",
+                          {"off", "photons"});
             params.integer("--photons", photons.photons,
                            "Photons traced from the lights each frame", 1000, 4000000)
                 .live = false;  // the map's buffers are sized for them
@@ -320,25 +337,36 @@ int main(int argc, char** argv) {
                 .record =
                     [map, &rt](VkCommandBuffer cmd, rg::gpu::RtPush& push,
                                uint32_t accumulated) {
+                        if (photons.caustics == PhotonSettings::kOff) return;
                         photons.lastRadius = frameRadius(photons, accumulated);
                         recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
                                         photons.lastRadius);
                     },
                 .finish =
                     [map, &app, &scene = c.scene] {
-                        std::vector<rg::gpu::Photon> stored =
-                            readPhotons(app.gpu, app.deletion, *map);
+                        LastPhotons last = readPhotons(app.gpu, app.deletion, *map);
                         if (!photons.ply.empty())
-                            writePhotonsPly(photons.ply, stored, scene.origin);
+                            writePhotonsPly(photons.ply, last.stored, scene.origin);
                         return nlohmann::json{
                             {"photons",
                              {{"emitted_per_frame", photons.photons},
-                              {"stored_last_frame", stored.size()},
+                              // the last frame's photons: stored (a caustic),
+                              // escaped, stopped by a limit
+                              {"stored_last_frame", last.header.stored},
+                              {"escaped_last_frame", last.header.escaped},
+                              {"lost_last_frame", last.header.lost},
                               {"emitters", map->emitterCount},
                               {"grid_cells", map->cellCount},
                               {"first_radius", photons.radius},
                               {"last_radius", photons.lastRadius},
                               {"alpha", photons.alpha}}}};
+                    },
+                // the reference averages the same radii's estimates
+                .reference =
+                    [](rg::ReferenceSettings& r) {
+                        if (photons.caustics == PhotonSettings::kOff) return;
+                        for (uint32_t i = 0; i < r.frames; ++i)
+                            r.photonRadii.push_back(frameRadius(photons, i));
                     },
             };
         },

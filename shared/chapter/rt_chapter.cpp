@@ -215,6 +215,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                     .firstFrame = last.frame - last.accumulated,
                                     .exposure = last.exposure,
                                     .antialias = last.antialias != 0};
+        if (pass.reference) pass.reference(reference);
         // the last frame's launches
         nlohmann::json extra = {{"launches", two.lastLaunches}, {"scene_load_ms", loadMs},
                                 {"parameters", params.values()},

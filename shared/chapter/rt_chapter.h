@@ -52,6 +52,9 @@ struct FramePass {
     // After the last frame: writes what the pass keeps (chapter 14's
     // --photons-ply) and returns its part of the run's report.
     std::function<nlohmann::json()> finish;
+    // What the CPU reference needs to know of the pass (chapter 14: the
+    // frames' radii), given its settings for the frames rendered.
+    std::function<void(ReferenceSettings&)> reference;
 };
 struct FramePassContext {
     App& app;

@@ -57,6 +57,36 @@ Split splitAt(const ReferenceSettings& settings, const Material& m, bool enterin
 // Chapter 13's media (written again from the rule on docs/13_real_glass.md,
 // not from media.glsl): the medium at a place is the stack's entry of
 // highest priority, of equal ones the last entered; -1 is air.
+Crossing crossingAt(const Scene& scene, const MediumStack& media, uint32_t material,
+                    bool entering) {
+    Crossing c;
+    c.from = mediumOf(scene, media);
+    c.beyond = media;
+    if (entering) {
+        c.beyond.materials.push_back(material);
+        if (c.beyond.materials.size() > kMediaDepth)
+            c.beyond.materials.erase(c.beyond.materials.begin());
+    } else {
+        auto it = std::find(c.beyond.materials.rbegin(), c.beyond.materials.rend(),
+                            material);
+        if (it != c.beyond.materials.rend())
+            c.beyond.materials.erase(std::next(it).base());
+        // leaving what it never entered: chapter 10's view
+        else c.from = int(material);
+    }
+    c.to = mediumOf(scene, c.beyond);
+    auto dispersionOf = [&](int k) {
+        return k < 0 ? std::pair(Glass::None, 0.0)
+                     : std::pair(scene.materials[k].glass, scene.materials[k].dispersion);
+    };
+    c.real = mediumIor(scene, c.from) != mediumIor(scene, c.to) ||
+             mediumAbsorption(scene, c.from) != mediumAbsorption(scene, c.to) ||
+             dispersionOf(c.from) != dispersionOf(c.to);
+    const auto none = std::pair(Glass::None, 0.0);
+    c.dispersive = dispersionOf(c.from) != none || dispersionOf(c.to) != none;
+    return c;
+}
+
 int mediumOf(const Scene& scene, const MediumStack& media) {
     int best = -1, bestPriority = -1;
     for (size_t k = media.materials.size(); k-- > 0;) {

@@ -33,6 +33,18 @@ int mediumOf(const Scene& scene, const MediumStack& media);
 double mediumIor(const Scene& scene, int medium);
 glm::dvec3 mediumAbsorption(const Scene& scene, int medium);
 
+// Chapter 13: what a ray inside `media` meets where it enters or leaves
+// `material`: the media on the two sides (-1: air) and the stack beyond.
+// real = false where nothing changes there (no surface at all).
+struct Crossing {
+    int from = -1, to = -1;
+    MediumStack beyond;
+    bool real = true;
+    bool dispersive = false;  // either side's index depends on the wavelength
+};
+Crossing crossingAt(const Scene& scene, const MediumStack& media, uint32_t material,
+                    bool entering);
+
 // Snell's law in vector form; false under total internal reflection.
 bool refractDirection(const glm::dvec3& d, const glm::dvec3& n, double n1, double n2,
                       glm::dvec3& t);

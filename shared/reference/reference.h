@@ -10,6 +10,9 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
+#include <vector>
+
 namespace rg {
 
 // What the reference computes: the shading of one chapter.
@@ -62,7 +65,16 @@ struct ReferenceSettings {
     // --antialias: each pixel is the mean over the first `frames` points of
     // its jitter sequence (the GPU's, sampling.glsl), one camera ray each.
     bool antialias = false;
+    // Chapter 14: the gathering radius of each frame averaged (the GPU's
+    // Knaus-Zwicker sequence); a diffuse point's caustic light is the mean of
+    // the photon map's estimates at these radii.
+    std::vector<double> photonRadii;
+    // Photons from each (light, glass) pair: a stratified grid of this many
+    // a side, each split at every surface by its Fresnel shares (photons.cpp).
+    int photonGrid = 1000;
 };
+
+class ReferencePhotons;
 
 struct ReferenceHit {
     double t = -1;          // < 0: miss
@@ -168,6 +180,14 @@ public:
     bool lightVisible(const glm::dvec3& from, const glm::dvec3& light) const;
     // Camera rays ignore hits closer than this to the eye (the GPU's eyeTmin).
     double eyeTmin() const { return scene_.eyeTmin; }
+    // Chapter 14: direct light in watts (Lambert's kd / pi, normalized
+    // Blinn-Phong) with the shares of chapter 09, as the page teaches it.
+    glm::dvec3 directLight(const Material& m, const glm::dvec3& p, double error,
+                           const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v,
+                           double local, double highlight) const;
+    // True when nothing lies between `from` and the sun, in direction l.
+    bool sunVisible(const glm::dvec3& from, const glm::dvec3& l) const;
+    const Scene& scene() const { return scene_; }
 
 private:
     // Tests object i; updates `best` when it is hit closer (or as close and listed
@@ -231,6 +251,8 @@ private:
     uint32_t skyWidth_ = 0, skyHeight_ = 0;
     // as the GPU's kRayCones: some texture has mip levels (textureAt)
     bool rayCones_ = false;
+    // chapter 14: the photon map render() builds before the pixels
+    mutable std::shared_ptr<const ReferencePhotons> photons_;
     std::vector<double> sky_;  // linear RGB
 };
 

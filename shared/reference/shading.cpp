@@ -3,6 +3,7 @@
 // render over all cores.
 #include "reference/reference.h"
 #include "reference/ray_tree.h"
+#include "reference/photons.h"
 
 #include "core/interrupt.h"
 
@@ -53,6 +54,37 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings,
     return color;
 }
 
+// [region reference_direct]
+// Chapter 14: what the page's radiometry says, in double.
+glm::dvec3 ReferenceRenderer::directLight(const Material& m, const glm::dvec3& p,
+                                          double error, const glm::dvec3& n,
+                                          const glm::dvec3& ns, const glm::dvec3& v,
+                                          double local, double highlight) const {
+    glm::dvec3 color = local * m.ka * scene_.ambient;
+    glm::dvec3 from = secondaryOrigin(p, error, n);
+    for (const PointLight& light : scene_.lights) {
+        bool sun = light.kind == PointLight::Kind::Directional;
+        glm::dvec3 toLight = light.position - p;
+        glm::dvec3 l = sun ? -light.direction : glm::normalize(toLight);
+        double cosine = glm::dot(ns, l);
+        if (cosine <= 0) continue;
+        glm::dvec3 E = sun ? light.irradiance : light.intensity / glm::dot(toLight, toLight);
+        glm::dvec3 h = glm::normalize(l + v);
+        glm::dvec3 brdf = local * m.kd / kPi +
+                          highlight * m.ks * (m.shininess + 8) / (8 * kPi) *
+                              std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
+        glm::dvec3 added = brdf * E * cosine;
+        if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
+        if (sun ? sunVisible(from, l) : lightVisible(from, light.position)) color += added;
+    }
+    return color;
+}
+// [end]
+
+bool ReferenceRenderer::sunVisible(const glm::dvec3& from, const glm::dvec3& l) const {
+    return trace(from, l, 0, 1e300).t < 0;
+}
+
 glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                                        const glm::dvec3& origin,
                                        const glm::dvec3& direction, int depth,
@@ -74,7 +106,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     textureAt(hit, direction, cone);
     // the deeper rays' cones start at the camera ray's hit (ray_tree.glsl)
     const RayCone deeper = depth == 0 ? RayCone{cone.spread, hit.t} : cone;
-    bool nested = settings.stage == ReferenceStage::Media;
+    bool nested = settings.stage >= ReferenceStage::Media;
     // Chapter 13: Beer-Lambert along the way, in the medium the ray is in.
     int here = nested ? mediumOf(scene_, media) : -1;  // -1: air
     glm::dvec3 kept(1), sigma = mediumAbsorption(scene_, here);
@@ -101,35 +133,17 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     const glm::dvec3 arriving = throughput * kept;
     MediumStack beyond = media;  // chapter 13: the media of a ray that crosses here
     if (nested && m.transmission > 0 && !thin) {
-        uint32_t material = scene_.objects[hit.object].material;
-        int from = here;
-        if (entering) {
-            beyond.materials.push_back(material);
-            if (beyond.materials.size() > kMediaDepth)
-                beyond.materials.erase(beyond.materials.begin());
-        } else {
-            auto it =
-                std::find(beyond.materials.rbegin(), beyond.materials.rend(), material);
-            if (it != beyond.materials.rend())
-                beyond.materials.erase(std::next(it).base());
-            // leaving what it never entered: chapter 10's view
-            else from = int(material);
-        }
-        int to = mediumOf(scene_, beyond);
+        Crossing crossing =
+            crossingAt(scene_, media, scene_.objects[hit.object].material, entering);
+        int from = crossing.from, to = crossing.to;
+        beyond = crossing.beyond;
         n1 = mediumIor(scene_, from), n2 = mediumIor(scene_, to);
-        auto dispersionOf = [&](int k) {
-            return k < 0 ? std::pair(Glass::None, 0.0)
-                         : std::pair(scene_.materials[k].glass,
-                                     scene_.materials[k].dispersion);
-        };
-        if (n1 == n2 && mediumAbsorption(scene_, from) == mediumAbsorption(scene_, to) &&
-            dispersionOf(from) == dispersionOf(to)) {  // no surface here
+        if (!crossing.real) {  // no surface here
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction,
                                    depth, arriving, beyond, passes, cone);
         }
-        const auto none = std::pair(Glass::None, 0.0);
-        if (dispersionOf(from) != none || dispersionOf(to) != none) {
+        if (crossing.dispersive) {
             if (media.wavelength == 0) {
                 // The first dispersive surface of this path: from here on its light
                 // depends on the wavelength. The same ray again at each wavelength.
@@ -159,9 +173,18 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     Split split = splitAt(settings, m, n1, n2, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (split.highlight > 0)
+    if (settings.stage == ReferenceStage::Caustics) {
+        // chapter 14: direct light in watts, and the photons' caustic light
+        if (split.highlight > 0)
+            color += directLight(m, p, hit.error, n, ns, v, split.local, split.highlight);
+        if (split.local > 0 && photons_ && !settings.photonRadii.empty()) {
+            // the mean of the frames' estimates
+            color += split.local * m.kd / kPi * photons_->irradiance(p, n);
+        }
+    } else if (split.highlight > 0) {
         color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
                               split.highlight);
+    }
     if (depth >= settings.maxDepth) return kept * color;
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
@@ -220,7 +243,7 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
     if (stdError) *stdError = 0;
     const RayCone camera{pixelSpread(height), 0};  // chapter 12's ray cones
     // chapter 13: the eye may be inside a medium
-    if (settings.stage == ReferenceStage::Media) {
+    if (settings.stage >= ReferenceStage::Media) {
         MediumStack eye;
         if (scene_.cameraMedium >= 0)
             eye.materials.push_back(uint32_t(scene_.cameraMedium));
@@ -308,6 +331,10 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
 FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t width,
                                      uint32_t height) const {
     FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
+    // chapter 14: the photons first, once
+    if (settings.stage == ReferenceStage::Caustics && !settings.photonRadii.empty() &&
+        !photons_)
+        photons_ = std::make_shared<ReferencePhotons>(*this, settings);
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> workers;
     std::atomic<uint32_t> rowsDone{0};

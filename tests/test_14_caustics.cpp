@@ -1,0 +1,340 @@
+// Chapter 14, light through glass, checked against optics: numbers from
+// physics written here in double, not from the CPU reference (which shares
+// the photon rules). A slab under the sun passes (1-R)^2 / (1-R^2) of it,
+// with absorption inside the sum; a ball lens's caustic matches a trace of
+// parallel rays through the ball, ring by ring; photons lose no power; the
+// lights' keys are checked where they belong.
+#include "harness.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unpolarized Fresnel reflectance from index n1 into n2 at cos(incidence) c.
+double fresnel(double c, double n1, double n2) {
+    double sinT = n1 / n2 * std::sqrt(std::max(0.0, 1 - c * c));
+    if (sinT >= 1) return 1;
+    double cosT = std::sqrt(1 - sinT * sinT);
+    double rs = (n1 * c - n2 * cosT) / (n1 * c + n2 * cosT);
+    double rp = (n2 * c - n1 * cosT) / (n2 * c + n1 * cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
+    std::string path = dir + "/" + name + "_scene.json";
+    std::ofstream(path) << scene.dump(1);
+    return path;
+}
+
+struct Rendered {
+    rg::FloatImage image;
+    nlohmann::json report;
+};
+
+Rendered render(const std::string& scene, const std::string& stem, int width, int height, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"--headless", "--validation", "--scene", scene, "--width", std::to_string(width),
+                                     "--height", std::to_string(height), "--output", stem + ".png"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    rgtest::RunResult r = rgtest::run(RG_EXE_14, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return {rg::readPfm(stem + ".pfm"), rgtest::readJson(stem + ".json")};
+}
+
+struct PlyPhoton {
+    glm::dvec3 position, power;
+};
+
+// --photons-ply's file: x y z red green blue, floats, little-endian.
+std::vector<PlyPhoton> readPly(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line, header;
+    size_t count = 0;
+    while (std::getline(in, line) && line != "end_header") {
+        header += line + "\n";
+        if (line.rfind("element vertex ", 0) == 0) count = std::stoul(line.substr(15));
+    }
+    EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos) << header;
+    std::vector<PlyPhoton> photons(count);
+    for (PlyPhoton& p : photons) {
+        float v[6];
+        in.read(reinterpret_cast<char*>(v), sizeof v);
+        p = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    }
+    EXPECT_TRUE(in) << path << ": shorter than its " << count << " photons";
+    return photons;
+}
+
+// The mean of the image's linear values over a centred window, per channel.
+glm::dvec3 centreMean(const rg::FloatImage& image, int half) {
+    glm::dvec3 sum(0);
+    int n = 0;
+    for (int y = int(image.height) / 2 - half; y < int(image.height) / 2 + half; ++y)
+        for (int x = int(image.width) / 2 - half; x < int(image.width) / 2 + half; ++x, ++n)
+            for (int c = 0; c < 3; ++c) sum[c] += image.rgba[(size_t(y) * image.width + x) * 4 + c];
+    return sum / double(n);
+}
+
+nlohmann::json sunScene(glm::dvec3 direction, const nlohmann::json& materials, const nlohmann::json& objects) {
+    return {{"camera", {{"position", {0, 0.5, 0.6}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 30}}},
+            {"sky", {{"top", {0, 0, 0}}, {"horizon", {0, 0, 0}}, {"bottom", {0, 0, 0}}}},
+            {"lights",
+             {{{"type", "directional"}, {"direction", {direction.x, direction.y, direction.z}}, {"irradiance", {1, 1, 1}}}}},
+            {"materials", materials},
+            {"objects", objects}};
+}
+
+// [region slab]
+// A wide slab of glass (n = 1.5) between the sun, straight above, and a
+// white floor. Light that reaches the floor crossed both faces after 0, 2,
+// 4 ... internal reflections: E (1-R)^2 T sum (R^2 T^2)^k = E (1-R)^2 T /
+// (1 - R^2 T^2), T = exp(-sigma d) the absorption across it, R = 0.04. The
+// floor beneath (camera between the two) shows kd / pi times that: no shadow
+// ray passes glass, so all of it is the photons' light.
+TEST(Chapter14, SlabPassesFresnelAndAbsorptionInsideTheSum) {
+    std::string dir = rgtest::outputDir("14_slab");
+    const double n = 1.5, d = 0.2, R = std::pow((n - 1) / (n + 1), 2);
+    for (bool absorbing : {false, true}) {
+        glm::dvec3 sigma = absorbing ? glm::dvec3(0.5, 1.5, 3.0) : glm::dvec3(0);
+        nlohmann::json glass = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}};
+        if (absorbing)  // attenuation_color c after distance 1: sigma = -ln c
+            glass["attenuation_color"] = {std::exp(-sigma.r), std::exp(-sigma.g), std::exp(-sigma.b)},
+            glass["attenuation_distance"] = 1.0;
+        nlohmann::json scene = sunScene(
+            {0, -1, 0}, {{"floor", {{"ka", 0}, {"kd", 1}}}, {"glass", glass}},
+            {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {3, 0, 0}}, {"v", {0, 0, -3}}, {"material", "floor"}},
+             // the slab: two faces, each facing out
+             {{"type", "quad"}, {"center", {0, 1 + d, 0}}, {"u", {1.5, 0, 0}}, {"v", {0, 0, -1.5}}, {"material", "glass"}},
+             {{"type", "quad"}, {"center", {0, 1, 0}}, {"u", {1.5, 0, 0}}, {"v", {0, 0, 1.5}}, {"material", "glass"}}});
+        std::string stem = dir + (absorbing ? "/amber" : "/clear");
+        Rendered run = render(writeScene(dir, absorbing ? "amber" : "clear", scene), stem, 96, 96,
+                         {"--frames", "24", "--photons", "200000", "--radius", "0.08", "--alpha", "1"});
+        glm::dvec3 measured = centreMean(run.image, 16) * kPi;  // E = pi L / kd
+        for (int c = 0; c < 3; ++c) {
+            double T = std::exp(-sigma[c] * d);
+            double expected = (1 - R) * (1 - R) * T / (1 - R * R * T * T);
+            EXPECT_NEAR(measured[c] / expected, 1.0, 0.01)
+                << (absorbing ? "amber" : "clear") << " channel " << c << ": E " << measured[c] << ", optics "
+                << expected;
+        }
+        EXPECT_EQ(run.report["validation_messages"], 0);
+    }
+}
+// [end]
+
+// A parallel beam through a ball (radius 1, n = 1.5, centre at the origin,
+// light going down), traced in double in the plane of the axis: each ray
+// splits at every surface by the exact Fresnel equations, and whatever
+// leaves downward lands on the plane y = floorY. Returns the power landing
+// within each radius of `edges` (cumulative), per unit irradiance.
+std::vector<double> ballLensRings(double n, double floorY, const std::vector<double>& edges) {
+    std::vector<double> power(edges.size(), 0.0);
+    const int steps = 200000;
+    std::function<void(glm::dvec2, glm::dvec2, bool, double, int)> trace = [&](glm::dvec2 o, glm::dvec2 d, bool inside,
+                                                                               double w, int depth) {
+        if (w < 1e-9 || depth > 24) return;
+        // the circle |o + t d| = 1
+        double b = glm::dot(o, d), c = glm::dot(o, o) - 1, disc = b * b - c;
+        double t = -1;
+        if (disc > 0) {
+            double s = std::sqrt(disc);
+            t = inside ? -b + s : -b - s;
+            if (t < 1e-12) t = -1;
+        }
+        if (t < 0) {  // left the ball: to the floor, if it goes down
+            if (d.y >= 0) return;
+            double x = o.x + d.x * (floorY - o.y) / d.y;
+            for (size_t i = 0; i < edges.size(); ++i)
+                if (std::abs(x) < edges[i]) power[i] += w;
+            return;
+        }
+        glm::dvec2 p = o + t * d, normal = p;  // unit: on the circle
+        if (inside) normal = -normal;
+        double cosI = -glm::dot(d, normal), n1 = inside ? n : 1.0, n2 = inside ? 1.0 : n;
+        double F = fresnel(cosI, n1, n2);
+        glm::dvec2 r = d + 2 * cosI * normal;
+        trace(p, r, inside, w * F, depth + 1);
+        if (F < 1) {
+            double eta = n1 / n2, k = 1 - eta * eta * (1 - cosI * cosI);
+            glm::dvec2 tr = eta * d + (eta * cosI - std::sqrt(k)) * normal;
+            trace(p, glm::normalize(tr), !inside, w * (1 - F), depth + 1);
+        }
+    };
+    for (int i = 0; i < steps; ++i) {
+        double b = (i + 0.5) / steps;  // the ray's distance from the axis
+        // weight: the ring of the beam it stands for (2 pi b db), both sides in 2D
+        trace({b, 2.0}, {0, -1}, false, 2 * kPi * b / steps, 0);
+    }
+    return power;
+}
+
+// [region ball_lens]
+// A glass ball of radius 1 under the sun, the floor at the paraxial focus
+// f = n R / (2 (n - 1)) below its centre. The photons stored on the floor
+// (--photons-ply) against the trace above: the power within the shadow's
+// disc (radius R) within 2 %, and the power in rings around the axis within
+// 5 % per ring (rings chosen to hold at least 5 % of it each).
+TEST(Chapter14, BallLensCausticMatchesParallelRays) {
+    std::string dir = rgtest::outputDir("14_ball_lens");
+    const double n = 1.5, f = n / (2 * (n - 1)), centreY = f;  // the floor at y = 0
+    nlohmann::json scene = sunScene(
+        {0, -1, 0},
+        {{"floor", {{"ka", 0}, {"kd", 0.8}}},
+         {"glass", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}}}},
+        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {4, 0, 0}}, {"v", {0, 0, -4}}, {"material", "floor"}},
+         {{"type", "sphere"}, {"center", {0, centreY, 0}}, {"radius", 1}, {"material", "glass"}}});
+    std::string ply = dir + "/photons.ply";
+    Rendered run = render(writeScene(dir, "ball", scene), dir + "/ball", 64, 48,
+                     {"--frames", "1", "--photons", "400000", "--photons-ply", ply});
+    std::vector<PlyPhoton> photons = readPly(ply);
+    ASSERT_EQ(photons.size(), size_t(run.report["photons"]["stored_last_frame"]));
+    std::vector<double> edges = {0.01, 0.02, 0.04, 0.08, 0.16, 0.32, 0.64, 1.0};
+    std::vector<double> optics = ballLensRings(n, -centreY, edges);
+    std::vector<double> measured(edges.size(), 0.0);
+    for (const PlyPhoton& p : photons) {
+        EXPECT_NEAR(p.position.y, 0.0, 1e-3);  // on the floor
+        double r = std::hypot(p.position.x, p.position.z);
+        for (size_t i = 0; i < edges.size(); ++i)
+            if (r < edges[i]) measured[i] += p.power.g;  // white light: one channel
+    }
+    EXPECT_NEAR(measured.back() / optics.back(), 1.0, 0.02)
+        << "in the shadow's disc: " << measured.back() << " W, parallel rays " << optics.back() << " W of "
+        << kPi << " W on the ball";
+    double lastEdge = 0, lastMeasured = 0, lastOptics = 0;
+    for (size_t i = 0; i < edges.size(); ++i) {
+        double ringOptics = optics[i] - lastOptics, ringMeasured = measured[i] - lastMeasured;
+        if (ringOptics < 0.05 * optics.back()) continue;  // merged into the next ring
+        EXPECT_NEAR(ringMeasured / ringOptics, 1.0, 0.05)
+            << "ring " << lastEdge << "-" << edges[i] << ": " << ringMeasured << " W, parallel rays " << ringOptics;
+        lastEdge = edges[i], lastMeasured = measured[i], lastOptics = optics[i];
+    }
+}
+// [end]
+
+// [region energy]
+// Photons never gain or lose power on their way through clear glass, and
+// each ends stored on a diffuse surface, escaped or stopped by a limit: the
+// power stored plus the power escaped is the power sent at the ball
+// (E pi R^2), within 0.1 %.
+TEST(Chapter14, ClearGlassLosesNoPhotonPower) {
+    std::string dir = rgtest::outputDir("14_energy");
+    nlohmann::json scene = sunScene(
+        {0.3, -1, 0.2},
+        {{"floor", {{"ka", 0}, {"kd", 0.8}}},
+         {"glass", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5}}}},
+        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {40, 0, 0}}, {"v", {0, 0, -40}}, {"material", "floor"}},
+         {{"type", "sphere"}, {"center", {0, 1.2, 0}}, {"radius", 1}, {"material", "glass"}}});
+    std::string ply = dir + "/photons.ply";
+    const int emitted = 200000;
+    Rendered run = render(writeScene(dir, "energy", scene), dir + "/energy", 64, 48,
+                     {"--frames", "1", "--photons", std::to_string(emitted), "--photons-ply", ply});
+    double stored = 0;
+    for (const PlyPhoton& p : readPly(ply)) stored += p.power.g;
+    const nlohmann::json& counts = run.report["photons"];
+    double each = kPi / emitted;  // every photon of one beam carries E pi R^2 / N
+    double escaped = double(counts["escaped_last_frame"]) * each, lost = double(counts["lost_last_frame"]) * each;
+    EXPECT_NEAR((stored + escaped) / kPi, 1.0, 0.001)
+        << "stored " << stored << " W, escaped " << escaped << " W, lost " << lost << " W of " << kPi;
+    EXPECT_LT(lost / kPi, 0.001);
+}
+// [end]
+
+// [region reference]
+// The default scene against the CPU reference, whose photons come from a
+// dense stratified grid split at every surface (no roulette). Both gather
+// with one fixed radius here: the GPU's mean over 32 frames of 400,000
+// photons each then converges to the same estimate as the reference.
+TEST(Chapter14, DefaultSceneMatchesReferenceAtAFixedRadius) {
+    nlohmann::json report = rgtest::expectMatchesReference(
+        RG_EXE_14, "", "14_reference",
+        {"--frames", "32", "--photons", "400000", "--radius", "0.05", "--alpha", "1"});
+    EXPECT_EQ(report["photons"]["last_radius"], report["photons"]["first_radius"]);
+}
+// [end]
+
+// The default scene's caustics, read off the picture: the clear ball's
+// shadow holds a spot brighter than the lit floor (the sun focused), and the
+// amber ball's shadow is amber (red above green above blue), where with
+// --caustics off both shadows are black.
+TEST(Chapter14, ShadowsHoldTheFocusedSunAndTheGlassColour) {
+    std::string dir = rgtest::outputDir("14_shadows");
+    std::string scene = RG_SOURCE_DIR "/assets/scenes/caustics.json";
+    auto renderDefault = [&](const std::string& name, const std::string& caustics) {
+        return render(scene, dir + "/" + name, 240, 135,
+                      {"--frames", "8", "--caustics", caustics});
+    };
+    Rendered on = renderDefault("on", "photons"), off = renderDefault("off", "off");
+    // the floor's open light: a pixel at the bottom centre, lit by the sun alone
+    auto at = [](const rg::FloatImage& im, int x, int y) {
+        const float* p = &im.rgba[(size_t(y) * im.width + x) * 4];
+        return glm::dvec3(p[0], p[1], p[2]);
+    };
+    glm::dvec3 floor = at(on.image, 120, 125);
+    double brightest = 0;
+    glm::dvec3 amber(0), amberOff(0);
+    for (int y = 60; y < 100; ++y)
+        for (int x = 80; x < 220; ++x) {
+            glm::dvec3 c = at(on.image, x, y), o = at(off.image, x, y);
+            if (x < 140) brightest = std::max(brightest, c.g - o.g);  // under the clear ball
+            if (x >= 165 && c.r - o.r > amber.r - amberOff.r) amber = c, amberOff = o;
+        }
+    EXPECT_GT(brightest, 2 * floor.g) << "no focused sun in the clear ball's shadow";
+    glm::dvec3 added = amber - amberOff;
+    EXPECT_GT(added.r, floor.r * 0.5);
+    EXPECT_GT(added.r, 1.5 * added.g);
+    EXPECT_GT(added.g, 1.5 * added.b);
+}
+
+// Lights in physical units belong to chapter 14; chapter 14 needs them.
+TEST(Chapter14, LightsInWattsOnlyWhereTheyAreTaught) {
+    std::string dir = rgtest::outputDir("14_keys");
+    nlohmann::json scene = sunScene({0, -1, 0}, {{"floor", {{"kd", 0.8}}}},
+                                    {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, -1}},
+                                      {"material", "floor"}}});
+    std::string sun = writeScene(dir, "sun", scene);
+    for (const char* exe : {RG_EXE_04, RG_EXE_06, RG_EXE_13}) {
+        rgtest::RunResult r = rgtest::run(exe, {"--headless", "--scene", sun, "--output", dir + "/x.png"});
+        EXPECT_EQ(r.exitCode, 2) << exe;
+        EXPECT_NE(r.output.find("lights[0]: lights in physical units (power, irradiance) come in chapter 14"),
+                  std::string::npos)
+            << r.output;
+    }
+    scene["lights"] = {{{"position", {0, 3, 0}}, {"intensity", 1}}};
+    rgtest::RunResult thesis =
+        rgtest::run(RG_EXE_14, {"--headless", "--scene", writeScene(dir, "thesis", scene), "--output", dir + "/y.png"});
+    EXPECT_EQ(thesis.exitCode, 2);
+    EXPECT_NE(thesis.output.find("chapter 14 needs lights in physical units"), std::string::npos) << thesis.output;
+    scene["lights"] = {{{"position", {0, 3, 0}}, {"power", 1}, {"intensity", 1}}};
+    rgtest::RunResult both =
+        rgtest::run(RG_EXE_14, {"--headless", "--scene", writeScene(dir, "both", scene), "--output", dir + "/z.png"});
+    EXPECT_EQ(both.exitCode, 2);
+    EXPECT_NE(both.output.find("lights[0].power: give power"), std::string::npos) << both.output;
+}
+
+// [region point_light]
+// A point light of power P over a white floor, nothing else: the floor
+// right below it at height h receives E = P / (4 pi h^2), and shows kd / pi E.
+TEST(Chapter14, PointLightFallsOffAsInverseSquare) {
+    std::string dir = rgtest::outputDir("14_point");
+    for (double h : {1.0, 2.0}) {
+        nlohmann::json scene = {
+            {"camera", {{"position", {0, 0.3, 0}}, {"look_at", {0, 0, 0}}, {"up", {0, 0, -1}}, {"fov_y_deg", 10}}},
+            {"lights", {{{"position", {0, h, 0}}, {"power", {10, 10, 10}}}}},
+            {"materials", {{"floor", {{"ka", 0}, {"kd", 0.5}}}}},
+            {"objects",
+             {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {5, 0, 0}}, {"v", {0, 0, -5}}, {"material", "floor"}}}}};
+        std::string name = "h" + std::to_string(int(h));
+        Rendered run = render(writeScene(dir, name, scene), dir + "/" + name, 32, 32, {"--frames", "1"});
+        double L = centreMean(run.image, 2).g, E = 10 / (4 * kPi * h * h);
+        EXPECT_NEAR(L / (0.5 / kPi * E), 1.0, 0.003) << "h " << h;
+    }
+}
+// [end]
+
+}  // namespace
