@@ -5,7 +5,9 @@ headless, validation on), and its picture differs from the chapter's where
 the stage shows (at least 0.5 % of pixels by more than 2 codes: the rough
 lobe of chapter 11 is one small sphere's reflection, 1.2 % on lavapipe); the solution,
 written into the same copy, draws the build's picture to the bit, so the
-copy and --shader-source change nothing else. A starter broken by a typo
+copy and --shader-source change nothing else (chapter 14 within one code:
+its photons are stored in the order their atomics happen to run, so its
+float sums may round differently from run to run). A starter broken by a typo
 is refused with one line naming its file and line, exit 2.
 
     tests/test_exercises.py BUILD_BIN_DIR
@@ -50,7 +52,8 @@ def check(chapter, bin_dir, work):
         return f"{chapter}: the starter draws the chapter's picture (only {100 * differ:.2f} % of pixels differ)"
     exercise(chapter, tree, solution=True)
     solved = render(bin_dir, chapter, work / f"{chapter}_solution.png", ["--shader-source", str(tree)])
-    if (solved != build).any():
+    tolerance = 1 if chapter == "14_caustics" else 0
+    if (numpy.abs(solved - build) > tolerance).any():
         return f"{chapter}: the solution in the copy draws another picture than the build"
     return None
 

@@ -133,6 +133,10 @@ CLAIMS = [
     {"page": "12_triangle_meshes.md", "pattern": r"at full size and\s+([0-9.]+) with ray cones",
      "command": ["12_triangle_meshes", *FAR_FLOOR], "measure": rmse_from_64_rays,
      "tolerance": 0.0005, "lavapipe": True},
+    pixels_off("14_caustics.md", r"prints an error of ([0-9.]+) % of pixels off by more\s+than 1/255",
+               ["14_caustics", "--reference", "--width", "160", "--height", "90", "--frames", "32",
+                "--photons", "400000", "--radius", "0.05", "--alpha", "1"],
+               0.007),  # one pixel of 14,400
     rays("13_real_glass.md", r"this chapter traces ([0-9.]+) million\s+rays a frame",
          ["13_real_glass", "--width", "800", "--height", "450"], 0.01, scale=1e6,
          lavapipe=True),  # the page's last digit

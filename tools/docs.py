@@ -142,7 +142,7 @@ def footer(root, chapter):
     if int(nn) >= 5:
         sources.append("shared/chapter/rt_chapter.cpp")  # chapter 04's main() for the shading chapters
     sources += [f.relative_to(root).as_posix() for f in sorted((root / "tests").glob(f"test_{nn}_*.cpp"))]
-    if int(nn) >= 5:
+    if 5 <= int(nn) <= 13:  # tests/CMakeLists.txt's RG_REFERENCE_CHAPTERS
         sources.append("tests/test_reference.cpp")
     missing = [s for s in sources if not (root / s).exists()]
     if missing:

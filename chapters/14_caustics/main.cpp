@@ -33,12 +33,15 @@ using namespace rg;
 struct PhotonSettings {
     enum { kOff, kPhotons };
     int caustics = kPhotons;  // off: glass casts chapter 13's black shadow
-    int photons = 100000;  // traced from the lights each frame
-    float radius = 0;      // the first frame's gathering radius; 0: from the glasses' size
+    int photons = 100000;     // traced from the lights each frame
+    float radius = 0;  // the first frame's gathering radius; 0: from the glasses' size
     // Knaus and Zwicker's alpha: each frame the radius^2 shrinks by
     // (i + alpha) / (i + 1); 1 keeps it fixed (biased, never converges)
     float alpha = 2.0f / 3.0f;
-    std::string ply;      // --photons-ply: the last frame's photons, written here
+    std::string ply;       // --photons-ply: the last frame's photons, written here
+    // --reference-photons: the CPU reference's photons from each light and
+    // glass, a stratified grid this many a side
+    int referenceGrid = 1000;
     float lastRadius = 0;  // the last frame's radius (the report)
 };
 
@@ -98,16 +101,16 @@ std::vector<gpu::PhotonEmitter> photonEmitters(const Scene& scene) {
                         M_PI * t.radius * t.radius;
             } else {
                 double d = glm::length(t.centre - light.position);
-                double cosMax = d > t.radius ? std::sqrt(1 - (t.radius / d) * (t.radius / d))
-                                             : -1.0;
-                watts = (light.intensity.r + light.intensity.g + light.intensity.b) *
-                        2 * M_PI * (1 - cosMax);
+                double cosMax =
+                    d > t.radius ? std::sqrt(1 - (t.radius / d) * (t.radius / d)) : -1.0;
+                watts = (light.intensity.r + light.intensity.g + light.intensity.b) * 2 *
+                        M_PI * (1 - cosMax);
             }
             if (!(watts > 0)) continue;
             double backoff = t.radius;  // how far toward the sun things reach
             for (const Sphere& o : all)
-                backoff = std::max(backoff, glm::dot(o.centre - t.centre, -light.direction) +
-                                                o.radius);
+                backoff = std::max(
+                    backoff, glm::dot(o.centre - t.centre, -light.direction) + o.radius);
             emitters.push_back({.target = glm::vec4(glm::vec3(t.centre), float(t.radius)),
                                 .light = l,
                                 .backoff = float(std::min(backoff, 1000 * t.radius))});
@@ -145,11 +148,12 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     map.capacity = uint32_t(settings.photons);
     // About two cells per photon, a power of two (the hash's last bits).
     map.cellCount = std::bit_ceil(std::max(2u * map.capacity, 1024u));
-    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    const VkBufferUsageFlags usage =
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+        VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     auto deviceBuffer = [&](VkDeviceSize bytes) {
-        return createBuffer(gpu, deletion, bytes, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        return createBuffer(gpu, deletion, bytes, usage,
+                            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     };
     map.photons = deviceBuffer(VkDeviceSize(map.capacity) * sizeof(gpu::Photon));
     map.sorted = deviceBuffer(VkDeviceSize(map.capacity) * sizeof(gpu::Photon));
@@ -179,8 +183,9 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     map.tracer = createRtPipeline(gpu, deletion, c.rt.descriptors.layout,
                                   sizeof(gpu::RtPush), shaders);
     // The grid: three compute shaders (count, prefix sum, scatter).
-    map.gridLayout = createPipelineLayout(gpu, deletion, c.rt.descriptors.layout,
-                                          sizeof(gpu::GridPush), VK_SHADER_STAGE_COMPUTE_BIT);
+    map.gridLayout =
+        createPipelineLayout(gpu, deletion, c.rt.descriptors.layout,
+                             sizeof(gpu::GridPush), VK_SHADER_STAGE_COMPUTE_BIT);
     map.count = createComputePipeline(gpu, deletion, map.gridLayout,
                                       "14_caustics/grid_count.comp");
     map.scan = createComputePipeline(gpu, deletion, map.gridLayout,
@@ -210,15 +215,18 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     constexpr VkPipelineStageFlags rtStage = VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
                                    compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                                    transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    constexpr VkAccessFlags readWrite = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    constexpr VkAccessFlags readWrite =
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     // The last frame's camera rays and grid are done with the map.
-    memoryBarrier(cmd, rtStage | compute, readWrite, transfer, VK_ACCESS_TRANSFER_WRITE_BIT);
+    memoryBarrier(cmd, rtStage | compute, readWrite, transfer,
+                  VK_ACCESS_TRANSFER_WRITE_BIT);
     // stored = 0, and the fates' counts
     vkCmdFillBuffer(cmd, map.header.handle, 0, sizeof(uint32_t), 0);
     vkCmdFillBuffer(cmd, map.header.handle, offsetof(gpu::PhotonMapHeader, escaped),
                     2 * sizeof(uint32_t), 0);
     vkCmdFillBuffer(cmd, map.cells.handle, 0, VK_WHOLE_SIZE, 0);
-    memoryBarrier(cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, rtStage | compute, readWrite);
+    memoryBarrier(cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, rtStage | compute,
+                  readWrite);
 
     push.photonMap = {uint32_t(map.header.address), uint32_t(map.header.address >> 32)};
     push.photonRadius = radius;
@@ -247,7 +255,8 @@ struct LastPhotons {
 LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap& map) {
     constexpr VkDeviceSize headerBytes = sizeof(gpu::PhotonMapHeader);
     VkDeviceSize bytes = headerBytes + VkDeviceSize(map.capacity) * sizeof(gpu::Photon);
-    Buffer host = createHostBuffer(gpu, deletion, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    Buffer host =
+        createHostBuffer(gpu, deletion, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     submitOnce(gpu, [&](VkCommandBuffer cmd) {
         memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
@@ -278,8 +287,12 @@ void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& ph
                  "end_header\n",
                  photons.size());
     for (const gpu::Photon& p : photons) {
-        float v[6] = {float(p.position.x - origin.x), float(p.position.y - origin.y),
-                      float(p.position.z - origin.z), p.power.r, p.power.g, p.power.b};
+        float v[6] = {float(p.position.x - origin.x),
+                      float(p.position.y - origin.y),
+                      float(p.position.z - origin.z),
+                      p.power.r,
+                      p.power.g,
+                      p.power.b};
         std::fwrite(v, sizeof v, 1, f);
     }
     bool ok = std::fclose(f) == 0;
@@ -287,10 +300,91 @@ void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& ph
         throw InputError(path + ": cannot write the photons");
 }
 
+// [region options]
+// The chapter's parameters: command-line options and overlay controls.
+PhotonSettings photons;
+
+void declareOptions(Params& params, RtChapterSettings& s) {
+    addDepthOption(params, s, 8);
+    s.fresnelMode = 2;  // exact, as chapter 13
+    addSpectralOptions(params, s);
+    params.choice("--caustics", photons.caustics,
+                  "Light through glass: none (black shadows, as chapter 13) or photons",
+                  {"off", "photons"});
+    params
+        .integer("--photons", photons.photons,
+                 "Photons traced from the lights each frame", 1000, 4000000)
+        .live = false;  // the map's buffers are sized for them
+    params.number("--radius", photons.radius,
+                  "First frame's gathering radius (0: the largest glass's bounding "
+                  "radius / 20)",
+                  0, 1e6);
+    params.number("--alpha", photons.alpha,
+                  "How slowly the radius shrinks (Knaus-Zwicker; 1: fixed)", 0.05, 1);
+    params
+        .integer("--reference-photons", photons.referenceGrid,
+                 "The CPU reference's photons from each light and glass: a grid this "
+                 "many a side, each split at every surface",
+                 16, 4000)
+        .live = false;
+    params
+        .text("--photons-ply", photons.ply,
+              "Write the last frame's photons to this PLY point cloud")
+        .live = false;
+}
+// [end]
+
+// [region pass]
+// The photon pass, made once the scene is on the GPU: each frame records
+// the photon map before the camera rays (rt_chapter.cpp).
+FramePass photonPass(const FramePassContext& c) {
+    if (photons.radius <= 0) {  // a twentieth of the largest glass
+        float largest = 0;
+        for (const gpu::PhotonEmitter& e : photonEmitters(c.scene))
+            largest = std::max(largest, e.target.w);
+        photons.radius = largest > 0 ? largest / 20 : 0.05f;
+    }
+    auto map = std::make_shared<PhotonMap>(createPhotonMap(c, photons));
+    const RtScene& rt = c.rt;
+    App& app = c.app;
+    const Scene& scene = c.scene;
+    FramePass pass;
+    pass.record = [map, &rt](VkCommandBuffer cmd, gpu::RtPush& push,
+                             uint32_t accumulated) {
+        if (photons.caustics == PhotonSettings::kOff) return;
+        photons.lastRadius = frameRadius(photons, accumulated);
+        recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
+                        photons.lastRadius);
+    };
+    pass.finish = [map, &app, &scene] {
+        LastPhotons last = readPhotons(app.gpu, app.deletion, *map);
+        if (!photons.ply.empty()) writePhotonsPly(photons.ply, last.stored, scene.origin);
+        // the last frame's photons: stored (a caustic), escaped, stopped by a limit
+        return nlohmann::json{{"photons",
+                               {{"emitted_per_frame", photons.photons},
+                                {"stored_last_frame", last.header.stored},
+                                {"escaped_last_frame", last.header.escaped},
+                                {"lost_last_frame", last.header.lost},
+                                {"emitters", map->emitterCount},
+                                {"grid_cells", map->cellCount},
+                                {"first_radius", photons.radius},
+                                {"last_radius", photons.lastRadius},
+                                {"alpha", photons.alpha}}}};
+    };
+    // the reference averages its estimates over the same frames' radii
+    pass.reference = [](ReferenceSettings& r) {
+        if (photons.caustics == PhotonSettings::kOff) return;
+        r.photonGrid = photons.referenceGrid;
+        for (uint32_t i = 0; i < r.frames; ++i)
+            r.photonRadii.push_back(frameRadius(photons, i));
+    };
+    return pass;
+}
+// [end]
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    static PhotonSettings photons;
     return rg::runRtChapter(argc, argv, {
         .name = "14_caustics",
         .description = "RayGlass chapter 14: light through glass, caustics and coloured "
@@ -298,77 +392,10 @@ int main(int argc, char** argv) {
         .title = "RayGlass 14: caustics",
         .stage = rg::ReferenceStage::Caustics,
         .meshes = true,
-        // A glass ball and a glass of water in sunlight, a coloured glass, a prism.
+        // A clear and an amber glass ball on a floor in low sunlight.
         .scene = "caustics",
-        .options = [](rg::Params& params, rg::RtChapterSettings& s) {
-            rg::addDepthOption(params, s, 8);
-            s.fresnelMode = 2;  // exact, as chapter 13
-            rg::addSpectralOptions(params, s);
-            params.choice("--caustics", photons.caustics,
-                          "Light through glass: none (black shadows, as chapter 13) or "
-                          "photons",
-                          {"off", "photons"});
-            params.integer("--photons", photons.photons,
-                           "Photons traced from the lights each frame", 1000, 4000000)
-                .live = false;  // the map's buffers are sized for them
-            params.number("--radius", photons.radius,
-                          "First frame's gathering radius (0: the largest glass's "
-                          "bounding radius / 20)",
-                          0, 1e6);
-            params.number("--alpha", photons.alpha,
-                          "How slowly the radius shrinks (Knaus-Zwicker; 1: fixed)",
-                          0.05, 1);
-            params.text("--photons-ply", photons.ply,
-                        "Write the last frame's photons to this PLY point cloud")
-                .live = false;
-        },
-        .physicalLights = true,
-        .framePass = [](const rg::FramePassContext& c) {
-            if (photons.radius <= 0) {
-                float largest = 0;
-                for (const auto& e : photonEmitters(c.scene))
-                    largest = std::max(largest, e.target.w);
-                photons.radius = largest > 0 ? largest / 20 : 0.05f;
-            }
-            auto map = std::make_shared<PhotonMap>(createPhotonMap(c, photons));
-            const RtScene& rt = c.rt;
-            rg::App& app = c.app;
-            return rg::FramePass{
-                .record =
-                    [map, &rt](VkCommandBuffer cmd, rg::gpu::RtPush& push,
-                               uint32_t accumulated) {
-                        if (photons.caustics == PhotonSettings::kOff) return;
-                        photons.lastRadius = frameRadius(photons, accumulated);
-                        recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
-                                        photons.lastRadius);
-                    },
-                .finish =
-                    [map, &app, &scene = c.scene] {
-                        LastPhotons last = readPhotons(app.gpu, app.deletion, *map);
-                        if (!photons.ply.empty())
-                            writePhotonsPly(photons.ply, last.stored, scene.origin);
-                        return nlohmann::json{
-                            {"photons",
-                             {{"emitted_per_frame", photons.photons},
-                              // the last frame's photons: stored (a caustic),
-                              // escaped, stopped by a limit
-                              {"stored_last_frame", last.header.stored},
-                              {"escaped_last_frame", last.header.escaped},
-                              {"lost_last_frame", last.header.lost},
-                              {"emitters", map->emitterCount},
-                              {"grid_cells", map->cellCount},
-                              {"first_radius", photons.radius},
-                              {"last_radius", photons.lastRadius},
-                              {"alpha", photons.alpha}}}};
-                    },
-                // the reference averages the same radii's estimates
-                .reference =
-                    [](rg::ReferenceSettings& r) {
-                        if (photons.caustics == PhotonSettings::kOff) return;
-                        for (uint32_t i = 0; i < r.frames; ++i)
-                            r.photonRadii.push_back(frameRadius(photons, i));
-                    },
-            };
-        },
+        .options = declareOptions,
+        .physicalLights = true,  // watts, and no ambient light unless the scene gives it
+        .framePass = photonPass,  // photons traced and sorted before each frame
     });
 }

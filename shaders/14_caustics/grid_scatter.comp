@@ -12,7 +12,8 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= min(map.header.stored, map.header.capacity)) return;
     Photon photon = PhotonsRef(map.header.photons).photons[i];
-    uint bucket = cellHash(gridCell(photon.position, grid.cellSize), map.header.cellCount);
+    ivec3 cell = gridCell(photon.position, grid.cellSize);
+    uint bucket = cellHash(cell, map.header.cellCount);
     uint place = atomicAdd(CellsRef(map.header.cells).cells[bucket], 1u);
     PhotonsRef(map.header.sorted).photons[place] = photon;
 }

@@ -17,7 +17,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer PhotonsRef 
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer CellsRef {
     uint cells[];
 };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EmittersRef {
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer
+EmittersRef {
     PhotonEmitter emitters[];
 };
 

@@ -61,7 +61,8 @@ Param& Params::toggle(const std::string& flag, bool& value, const std::string& h
                 .inverted = inverted});
 }
 
-Param& Params::text(const std::string& flag, std::string& value, const std::string& help) {
+Param& Params::text(const std::string& flag, std::string& value,
+                    const std::string& help) {
     return add({.kind = Param::Kind::Text,
                 .flag = flag,
                 .help = help,

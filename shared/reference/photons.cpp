@@ -57,8 +57,9 @@ ReferencePhotons::ReferencePhotons(const ReferenceRenderer& renderer,
     }
     if (targets.size() > 64) {  // many small glasses: one sphere around them
         glm::dvec3 lo(1e300), hi(-1e300);
-        for (const Sphere& t : targets) lo = glm::min(lo, t.centre - t.radius),
-                                        hi = glm::max(hi, t.centre + t.radius);
+        for (const Sphere& t : targets)
+            lo = glm::min(lo, t.centre - t.radius),
+            hi = glm::max(hi, t.centre + t.radius);
         targets = {{(lo + hi) * 0.5, glm::length(hi - lo) * 0.5}};
     }
     const int side = std::max(1, settings.photonGrid);
@@ -91,8 +92,8 @@ ReferencePhotons::ReferencePhotons(const ReferenceRenderer& renderer,
         for (const Sphere& t : targets) {
             double backoff = t.radius;  // a sun's photons start beyond everything
             for (const Sphere& o : all)
-                backoff = std::max(backoff, glm::dot(o.centre - t.centre, -light.direction) +
-                                                o.radius);
+                backoff = std::max(
+                    backoff, glm::dot(o.centre - t.centre, -light.direction) + o.radius);
             backoff = std::min(backoff, 1000 * t.radius);
             unsigned threads = std::max(1u, std::thread::hardware_concurrency());
             std::vector<std::thread> workers;
@@ -112,15 +113,18 @@ ReferencePhotons::ReferencePhotons(const ReferenceRenderer& renderer,
                                 power = light.irradiance / density(x, direction);
                                 origin = x - direction * backoff;
                             } else {
-                                glm::dvec3 axis = glm::normalize(t.centre - light.position);
+                                glm::dvec3 axis =
+                                    glm::normalize(t.centre - light.position);
                                 double cosine = 1 - u * (1 - cosMaxOf(t));
-                                double sine = std::sqrt(std::max(0.0, 1 - cosine * cosine));
+                                double sine =
+                                    std::sqrt(std::max(0.0, 1 - cosine * cosine));
                                 basis(axis, tangent, bitangent);
                                 direction = glm::normalize(
                                     cosine * axis +
                                     sine * (std::cos(2 * kPi * v) * tangent +
                                             std::sin(2 * kPi * v) * bitangent));
-                                power = light.intensity / density(light.position, direction);
+                                power =
+                                    light.intensity / density(light.position, direction);
                                 origin = light.position;
                             }
                             part.trace(settings, origin, direction, power, MediumStack{},
@@ -160,7 +164,8 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
                              glm::dvec3 direction, glm::dvec3 power,
                              const MediumStack& media, bool specular, int bounces,
                              int passes) {
-    if (std::max({std::abs(power.r), std::abs(power.g), std::abs(power.b)}) < 1e-14) return;
+    if (std::max({std::abs(power.r), std::abs(power.g), std::abs(power.b)}) < 1e-14)
+        return;
     const Scene& scene = renderer_.scene();
     ReferenceHit hit = renderer_.trace(origin, direction, 0, 1e300);
     if (hit.t < 0) return;  // escaped
@@ -177,7 +182,8 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
     if (thin) n1 = mediumIor(scene, mediumOf(scene, media)), n2 = m.ior;
     MediumStack beyond = media;
     if (m.transmission > 0 && !thin) {
-        Crossing c = crossingAt(scene, media, scene.objects[hit.object].material, entering);
+        Crossing c =
+            crossingAt(scene, media, scene.objects[hit.object].material, entering);
         if (!c.real) {  // no surface: on into the new media
             if (passes < kMaxPasses)
                 trace(settings, renderer_.secondaryOrigin(p, hit.error, -n), direction,
@@ -190,13 +196,15 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
                 MediumStack at = media;
                 if (settings.wavelength >= kMinNm) {
                     at.wavelength = settings.wavelength;
-                    trace(settings, origin, direction, sent, at, specular, bounces, passes);
+                    trace(settings, origin, direction, sent, at, specular, bounces,
+                          passes);
                     return;
                 }
                 for (int k = 0; k < kWavelengths; ++k) {
                     at.wavelength = kMinNm + (k + 0.5) * (kMaxNm - kMinNm) / kWavelengths;
                     trace(settings, origin, direction,
-                          sent * referenceSpectralWeight(at.wavelength) / double(kWavelengths),
+                          sent * referenceSpectralWeight(at.wavelength) /
+                              double(kWavelengths),
                           at, specular, bounces, passes);
                 }
                 return;
@@ -242,11 +250,12 @@ glm::dvec3 ReferencePhotons::irradiance(const glm::dvec3& p, const glm::dvec3& n
                     const Photon& photon = photons_[i];
                     glm::dvec3 d = photon.position - p;
                     double d2 = glm::dot(d, d);
-                    if (d2 >= largest * largest || glm::dot(photon.normal, n) <= 0) continue;
+                    if (d2 >= largest * largest || glm::dot(photon.normal, n) <= 0)
+                        continue;
                     // the radii this photon lies within: the first above d, and on
-                    size_t first = std::upper_bound(radii_.begin(), radii_.end(),
-                                                    std::sqrt(d2)) -
-                                   radii_.begin();
+                    size_t first =
+                        std::upper_bound(radii_.begin(), radii_.end(), std::sqrt(d2)) -
+                        radii_.begin();
                     sum += photon.power * weightFrom_[first];
                 }
             }

@@ -18,7 +18,8 @@ namespace rg {
 
 class ReferencePhotons {
 public:
-    ReferencePhotons(const ReferenceRenderer& renderer, const ReferenceSettings& settings);
+    ReferencePhotons(const ReferenceRenderer& renderer,
+                     const ReferenceSettings& settings);
     // The irradiance the photons bring to p (normal n, facing the side they
     // must have come from) within a radius r: their power over pi r^2; the
     // mean of that over the frames' radii (settings.photonRadii), in one pass.
@@ -26,7 +27,8 @@ public:
     size_t size() const { return photons_.size(); }
 
 private:
-    explicit ReferencePhotons(const ReferenceRenderer& renderer);  // empty: a thread's part
+    // empty: one thread's part
+    explicit ReferencePhotons(const ReferenceRenderer& renderer);
     struct Photon {
         glm::dvec3 position, normal, power;
     };

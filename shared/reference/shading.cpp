@@ -68,14 +68,16 @@ glm::dvec3 ReferenceRenderer::directLight(const Material& m, const glm::dvec3& p
         glm::dvec3 l = sun ? -light.direction : glm::normalize(toLight);
         double cosine = glm::dot(ns, l);
         if (cosine <= 0) continue;
-        glm::dvec3 E = sun ? light.irradiance : light.intensity / glm::dot(toLight, toLight);
+        glm::dvec3 E =
+            sun ? light.irradiance : light.intensity / glm::dot(toLight, toLight);
         glm::dvec3 h = glm::normalize(l + v);
         glm::dvec3 brdf = local * m.kd / kPi +
                           highlight * m.ks * (m.shininess + 8) / (8 * kPi) *
                               std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
         glm::dvec3 added = brdf * E * cosine;
         if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
-        if (sun ? sunVisible(from, l) : lightVisible(from, light.position)) color += added;
+        bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
+        if (visible) color += added;
     }
     return color;
 }

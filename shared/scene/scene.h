@@ -32,7 +32,7 @@ struct Sky {
 struct PointLight {
     enum class Kind {
         Thesis,      // intensity: the thesis's radiance scale I_i, no falloff
-        Point,       // "power" in watts: intensity = power / 4 pi (W/sr), E falls as 1/r^2
+        Point,       // "power" in watts: intensity = power / 4 pi W/sr, E falls as 1/r^2
         Directional  // a sun: irradiance on a surface facing it, from `direction`
     };
     Kind kind = Kind::Thesis;

@@ -169,8 +169,10 @@ void Viewer::viewControls() {
         // chapter 14's point lights: radiant intensity, W/sr (power / 4 pi)
         float v[3] = {float(light.intensity.r), float(light.intensity.g),
                       float(light.intensity.b)};
-        if (ImGui::ColorEdit3(light.kind == PointLight::Kind::Point ? "W/sr" : "intensity",
-                              v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+        const char* unit = light.kind == PointLight::Kind::Point ? "W/sr" : "intensity";
+        const ImGuiColorEditFlags flags =
+            ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR;
+        if (ImGui::ColorEdit3(unit, v, flags)) {
             light.intensity = glm::max(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(0));
             lightsDirty_ = true;
         }
