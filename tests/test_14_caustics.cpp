@@ -291,6 +291,108 @@ TEST(Chapter14, ShadowsHoldTheFocusedSunAndTheGlassColour) {
     EXPECT_GT(added.g, 1.5 * added.b);
 }
 
+// [region prism]
+// A 60-degree prism of N-BK7 (side 30, its own OBJ here), the sun at the
+// angle of minimum deviation for the d line, a screen 2000 beyond. At one
+// wavelength at a time (--wavelength), the photons that crossed both faces
+// land on the screen where Snell's law with SCHOTT's index puts them: the
+// ray through the middle of the first face, traced here in 2D (all of it
+// is affine in where a ray enters, so the photons' centroid lands where
+// the middle ray does), within 0.05 degrees of deviation; red least.
+TEST(Chapter14, APrismThrowsEachLineWhereSnellPutsIt) {
+    std::string dir = rgtest::outputDir("14_prism");
+    struct Line { const char* name; double nm, n; };  // SCHOTT N-BK7 datasheet
+    const Line lines[3] = {{"F", 486.1327, 1.52238}, {"d", 587.5618, 1.51680}, {"C", 656.2725, 1.51432}};
+    const double deg = kPi / 180;
+    // the triangle in (x, z), centred on 0: faces A = p0 p2, B = p2 p1, base p0 p1
+    const glm::dvec2 p0(-15, -15 / std::sqrt(3.0)), p1(15, -15 / std::sqrt(3.0)), p2(0, 30 / std::sqrt(3.0));
+    {
+        std::ofstream obj(dir + "/prism.obj");
+        for (double y : {-20.0, 20.0})
+            for (glm::dvec2 p : {p0, p1, p2}) obj << "v " << p.x << " " << y << " " << p.y << "\n";
+        // counter-clockwise seen from outside
+        obj << "f 1 2 3\nf 4 6 5\nf 1 4 5\nf 1 5 2\nf 2 5 6\nf 2 6 3\nf 3 6 4\nf 3 4 1\n";
+    }
+    // Incidence at minimum deviation for d: i = asin(n sin 30 deg), from A's inward normal.
+    const double inwardAngle = -30 * deg, i = std::asin(lines[1].n * 0.5);
+    const glm::dvec2 sun(std::cos(inwardAngle + i), std::sin(inwardAngle + i));
+    // 2D Snell through the middle of face A, then face B: the landing line.
+    auto refract2 = [](glm::dvec2 d, glm::dvec2 n, double eta) {  // n against d
+        double c = -glm::dot(d, n), k = 1 - eta * eta * (1 - c * c);
+        return glm::normalize(eta * d + (eta * c - std::sqrt(k)) * n);
+    };
+    auto hitLine = [](glm::dvec2 o, glm::dvec2 d, glm::dvec2 a, glm::dvec2 b) {
+        glm::dvec2 e = b - a;
+        double t = ((a.x - o.x) * e.y - (a.y - o.y) * e.x) / (d.x * e.y - d.y * e.x);
+        return o + t * d;
+    };
+    auto outwardNormal = [](glm::dvec2 a, glm::dvec2 b) {  // of a face a -> b, counter-clockwise triangle
+        glm::dvec2 e = glm::normalize(b - a);
+        return glm::dvec2(e.y, -e.x);
+    };
+    const glm::dvec2 nA = outwardNormal(p2, p0), nB = outwardNormal(p1, p2);
+    struct Exit { glm::dvec2 point, direction; };
+    auto exitRay = [&](double n, glm::dvec2 entry) {
+        glm::dvec2 inside = refract2(sun, nA, 1 / n);
+        glm::dvec2 out = hitLine(entry, inside, p2, p1);
+        return Exit{out, refract2(inside, -nB, n)};
+    };
+    // The screen: across the d line's exit beam, 2000 beyond the prism. (The
+    // sun's reflection off the prism's base, 20 % at 71 degrees, leaves 1.4
+    // degrees from the d line's beam: at 2000 it lands 50 beside it.)
+    const glm::dvec2 middle = (p0 + p2) * 0.5;
+    Exit d = exitRay(lines[1].n, middle);
+    const glm::dvec2 screenCentre = d.point + 2000.0 * d.direction, across(-d.direction.y, d.direction.x);
+    nlohmann::json scene = {
+        {"camera", {{"position", {0, 60, 0}}, {"look_at", {screenCentre.x, 0, screenCentre.y}}}},
+        {"lights",
+         {{{"type", "directional"}, {"direction", {sun.x, 0, sun.y}}, {"irradiance", {1, 1, 1}}}}},
+        {"materials",
+         {{"bk7", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"dispersion", "bk7"}}},
+          {"screen", {{"ka", 0}, {"kd", 1}}}}},
+        {"objects",
+         {{{"type", "mesh"}, {"file", dir + "/prism.obj"}, {"material", "bk7"}},
+          {{"type", "quad"},
+           {"center", {screenCentre.x, 0, screenCentre.y}},
+           {"u", {across.x * 60, 0, across.y * 60}},
+           {"v", {0, 40, 0}},
+           {"material", "screen"}}}}};
+    std::string path = writeScene(dir, "prism", scene);
+    double deviation[3];
+    for (int k = 0; k < 3; ++k) {
+        std::string ply = dir + "/" + lines[k].name + ".ply";
+        render(path, dir + "/" + lines[k].name, 32, 32,
+               {"--frames", "1", "--photons", "400000", "--wavelength", std::to_string(lines[k].nm),
+                "--photons-ply", ply});
+        // where a ray entering face A at `entry` meets the screen, along `across`
+        auto landing = [&](glm::dvec2 entry, double* distance = nullptr) {
+            Exit e = exitRay(lines[k].n, entry);
+            double t = glm::dot(screenCentre - e.point, d.direction) / glm::dot(e.direction, d.direction);
+            if (distance) *distance = t;
+            return glm::dot(e.point + t * e.direction - screenCentre, across);
+        };
+        double t = 0, expected = landing(middle, &t);
+        // the band's inner 90 %
+        double half = 0.45 * std::abs(landing(p2) - landing(p0));
+        Exit e = exitRay(lines[k].n, middle);
+        double sum = 0, weight = 0;
+        for (const PlyPhoton& p : readPly(ply)) {
+            double u = glm::dot(glm::dvec2(p.position.x, p.position.z) - screenCentre, across);
+            if (std::abs(p.position.y) > 10 || std::abs(u - expected) > half) continue;
+            sum += u * p.power.g, weight += p.power.g;
+        }
+        ASSERT_GT(weight, 0) << lines[k].name << ": no photons near " << expected;
+        double optics = std::acos(glm::dot(sun, e.direction)) / deg;  // Snell's deviation
+        deviation[k] = optics + std::atan((sum / weight - expected) / t) / deg * (glm::dot(across, e.direction) < 0 ? 1 : -1);
+        std::printf("prism at %s (%.4f nm): deviation %.4f deg from the photons, Snell %.4f\n", lines[k].name,
+                    lines[k].nm, deviation[k], optics);
+        EXPECT_NEAR(deviation[k], optics, 0.05) << lines[k].name;
+    }
+    EXPECT_LT(deviation[2], deviation[1]);  // red (C) least
+    EXPECT_LT(deviation[1], deviation[0]);
+}
+// [end]
+
 // Lights in physical units belong to chapter 14; chapter 14 needs them.
 TEST(Chapter14, LightsInWattsOnlyWhereTheyAreTaught) {
     std::string dir = rgtest::outputDir("14_keys");
