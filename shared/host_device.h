@@ -101,6 +101,7 @@ RG_INLINE vec3 instanceColor(uint i) {
 #define RAY_TYPE_SHADOW 3u
 #define MISS_SKY 0u
 #define MISS_SHADOW 1u
+#define MISS_TRANSMIT 2u  // chapter 14's --caustics transmit: its shadow rays' miss
 
 struct RtCamera {
     mat4 viewInverse;  // camera -> world
@@ -262,8 +263,13 @@ struct RtPush {
     uvec2 photonMap;
     float photonRadius;  // this frame's gathering radius (world units)
     uint photonsEmitted;  // photons traced from the lights this frame
+    uint caustics;        // chapter 14's --caustics: CAUSTICS_*
+    uint unused0, unused1, unused2;
 };
-RG_SIZE(RtPush, 64);
+RG_SIZE(RtPush, 80);
+#define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
+#define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
+#define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)
 
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {

@@ -31,8 +31,10 @@ namespace {
 using namespace rg;
 
 struct PhotonSettings {
-    enum { kOff, kPhotons };
-    int caustics = kPhotons;  // off: glass casts chapter 13's black shadow
+    // off: glass casts chapter 13's black shadow; transmit: shadow rays pass
+    // glass unbent (transmit.glsl), what real-time engines do
+    enum { kOff, kPhotons, kTransmit };
+    int caustics = kPhotons;
     int photons = 100000;     // traced from the lights each frame
     float radius = 0;  // the first frame's gathering radius; 0: from the glasses' size
     // Knaus and Zwicker's alpha: each frame the radius^2 shrinks by
@@ -308,9 +310,12 @@ void declareOptions(Params& params, RtChapterSettings& s) {
     addDepthOption(params, s, 8);
     s.fresnelMode = 2;  // exact, as chapter 13
     addSpectralOptions(params, s);
-    params.choice("--caustics", photons.caustics,
-                  "Light through glass: none (black shadows, as chapter 13) or photons",
-                  {"off", "photons"});
+    params
+        .choice("--caustics", photons.caustics,
+                "Light through glass: none (black shadows, as chapter 13), photons, or "
+                "shadow rays that pass glass unbent (transmit)",
+                {"off", "photons", "transmit"})
+        .live = false;  // transmit's shaders are chosen when the pipeline is made
     params
         .integer("--photons", photons.photons,
                  "Photons traced from the lights each frame", 1000, 4000000)
@@ -334,6 +339,21 @@ void declareOptions(Params& params, RtChapterSettings& s) {
 }
 // [end]
 
+// [region transmit_shaders]
+// --caustics transmit: the shadow hit groups get any-hit shaders that pass
+// glass (transmit.glsl), and the shadow rays their own miss shader.
+void adaptShaders(RtShaders& shaders, const Scene&) {
+    if (photons.caustics != PhotonSettings::kTransmit) return;
+    shaders.miss.push_back("14_caustics/transmit.rmiss");  // MISS_TRANSMIT
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_QUAD).anyHit =
+        "14_caustics/transmit_triangle.rahit";
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_MESH).anyHit =
+        "14_caustics/transmit_triangle.rahit";
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_SPHERE).anyHit =
+        "14_caustics/transmit_sphere.rahit";
+}
+// [end]
+
 // [region pass]
 // The photon pass, made once the scene is on the GPU: each frame records
 // the photon map before the camera rays (rt_chapter.cpp).
@@ -344,14 +364,25 @@ FramePass photonPass(const FramePassContext& c) {
             largest = std::max(largest, e.target.w);
         photons.radius = largest > 0 ? largest / 20 : 0.05f;
     }
+    FramePass pass;
+    if (photons.caustics != PhotonSettings::kPhotons) {  // no photon map
+        pass.record = [](VkCommandBuffer, gpu::RtPush& push, uint32_t) {
+            push.caustics = photons.caustics == PhotonSettings::kTransmit
+                                ? CAUSTICS_TRANSMIT
+                                : CAUSTICS_OFF;
+        };
+        pass.reference = [](ReferenceSettings& r) {
+            r.transmitShadows = photons.caustics == PhotonSettings::kTransmit;
+        };
+        return pass;
+    }
     auto map = std::make_shared<PhotonMap>(createPhotonMap(c, photons));
     const RtScene& rt = c.rt;
     App& app = c.app;
     const Scene& scene = c.scene;
-    FramePass pass;
     pass.record = [map, &rt](VkCommandBuffer cmd, gpu::RtPush& push,
                              uint32_t accumulated) {
-        if (photons.caustics == PhotonSettings::kOff) return;
+        push.caustics = CAUSTICS_PHOTONS;
         photons.lastRadius = frameRadius(photons, accumulated);
         recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
                         photons.lastRadius);
@@ -373,7 +404,6 @@ FramePass photonPass(const FramePassContext& c) {
     };
     // the reference averages its estimates over the same frames' radii
     pass.reference = [](ReferenceSettings& r) {
-        if (photons.caustics == PhotonSettings::kOff) return;
         r.photonGrid = photons.referenceGrid;
         for (uint32_t i = 0; i < r.frames; ++i)
             r.photonRadii.push_back(frameRadius(photons, i));
@@ -396,6 +426,7 @@ int main(int argc, char** argv) {
         .scene = "caustics",
         .options = declareOptions,
         .physicalLights = true,  // watts, and no ambient light unless the scene gives it
+        .adaptShaders = adaptShaders,  // --caustics transmit's any-hit shaders
         .framePass = photonPass,  // photons traced and sorted before each frame
     });
 }

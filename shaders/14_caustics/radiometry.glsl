@@ -8,6 +8,23 @@
 #ifndef RADIOMETRY_GLSL
 #define RADIOMETRY_GLSL
 
+// --caustics transmit: the shadow ray's payload, what the glass on its way
+// lets through (transmit.glsl)
+layout(location = 2) rayPayloadEXT vec4 shadowTransmittance;  // rgb; w: tMax
+
+// [region transmitted]
+// What reaches `origin` from `tMax` along l through the glass in between:
+// the traversal runs the shadow hit groups' any-hit shaders at every hit
+// (no opaque shortcut), which multiply in each glass and stop at anything
+// else; the miss shader leaves what is left.
+vec3 transmittedLight(vec3 origin, vec3 l, float tMax) {
+    shadowTransmittance = vec4(1.0, 1.0, 1.0, tMax);
+    traceRayEXT(tlas, gl_RayFlagsNoOpaqueEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF,
+                RAY_TYPE_SHADOW, 0, MISS_TRANSMIT, origin, 0.0, l, tMax, 2);
+    return shadowTransmittance.rgb;
+}
+// [end]
+
 // Nothing between `origin` and the sun in direction l (a shadow ray to infinity).
 bool sunVisible(vec3 origin, vec3 l) {
     shadowPayload = 1u;
@@ -43,8 +60,15 @@ vec3 directLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
         vec3 light = brdf * irradiance * cosine;
         if (max(light.r, max(light.g, light.b)) < MIN_LIGHT) continue;
         ++rays;
-        if (sun ? sunVisible(origin, l) : lightVisible(origin, lights[i].position.xyz))
+        if (push.caustics == CAUSTICS_TRANSMIT) {  // shadow rays through glass
+            vec3 toLightHere = lights[i].position.xyz - origin;
+            float tMax = sun ? kInfinity : safeLength(toLightHere) * (1.0 - 1e-5);
+            vec3 dir = sun ? l : safeNormalize(toLightHere);
+            sum += light * transmittedLight(origin, dir, tMax);
+        } else if (sun ? sunVisible(origin, l)
+                       : lightVisible(origin, lights[i].position.xyz)) {
             sum += light;
+        }
     }
     return sum;
 }

@@ -114,6 +114,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         bool thinWalls = useThinWalls(shaders, scene);
         // rays carry their cones where a texture has mip levels (chapter 12)
         bool rayCones = useRayCones(shaders, scene);
+        if (chapter.adaptShaders) chapter.adaptShaders(shaders, scene);  // chapter 14
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
         // switch them on at any time, headless runs only from the start.

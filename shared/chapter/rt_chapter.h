@@ -79,6 +79,9 @@ struct RtChapter {
     // chapter 14 on: lights in physical units (power, irradiance), no
     // ambient light unless the scene gives it; earlier chapters refuse them
     bool physicalLights = false;
+    // chapter 14 on: changes the pipeline's shaders for the scene before the
+    // pipeline is made (--caustics transmit's any-hit and miss shaders)
+    std::function<void(RtShaders&, const Scene&)> adaptShaders;
     // chapter 14 on: made once the scene is uploaded (FramePass)
     std::function<FramePass(const FramePassContext&)> framePass;
 };

@@ -166,8 +166,10 @@ VkAccelerationStructureGeometryKHR aabbGeometry(const Buffer& boxes) {
             .data = {.deviceAddress = boxes.address},
             .stride = sizeof(VkAabbPositionsKHR),
         }},
-        // no any-hit shader: the first hit is the hit
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+        // no any-hit shader: the first hit is the hit. Where a ray makes it
+        // run anyway (chapter 14's transmitted shadows), once per hit.
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR |
+                 VK_GEOMETRY_NO_DUPLICATE_ANY_HIT_INVOCATION_BIT_KHR,
     };
 }
 
@@ -187,8 +189,10 @@ VkAccelerationStructureGeometryKHR triangleGeometry(const Buffer& vertices,
             .indexType = VK_INDEX_TYPE_UINT32,
             .indexData = {.deviceAddress = indices.address},
         }},
-        // no any-hit shader: the first hit is the hit
-        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR,
+        // no any-hit shader: the first hit is the hit (once per hit where a
+        // ray or an instance makes it run: alpha tests, transmitted shadows)
+        .flags = VK_GEOMETRY_OPAQUE_BIT_KHR |
+                 VK_GEOMETRY_NO_DUPLICATE_ANY_HIT_INVOCATION_BIT_KHR,
     };
 }
 

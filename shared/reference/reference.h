@@ -72,6 +72,9 @@ struct ReferenceSettings {
     // Photons from each (light, glass) pair: a stratified grid of this many
     // a side, each split at every surface by its Fresnel shares (photons.cpp).
     int photonGrid = 1000;
+    // Chapter 14's --caustics transmit: shadow rays pass glass unbent, keeping
+    // 1 - F at each surface and Beer-Lambert between (and no photons).
+    bool transmitShadows = false;
 };
 
 class ReferencePhotons;
@@ -182,11 +185,16 @@ public:
     double eyeTmin() const { return scene_.eyeTmin; }
     // Chapter 14: direct light in watts (Lambert's kd / pi, normalized
     // Blinn-Phong) with the shares of chapter 09, as the page teaches it.
-    glm::dvec3 directLight(const Material& m, const glm::dvec3& p, double error,
+    glm::dvec3 directLight(const ReferenceSettings& settings, const Material& m,
+                           const glm::dvec3& p, double error,
                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v,
                            double local, double highlight) const;
     // True when nothing lies between `from` and the sun, in direction l.
     bool sunVisible(const glm::dvec3& from, const glm::dvec3& l) const;
+    // --caustics transmit: what passes from `from` along unit l up to tMax,
+    // through every glass surface on the way (1 - F each, Beer-Lambert inside).
+    glm::dvec3 transmittedLight(const ReferenceSettings& settings, glm::dvec3 from,
+                                const glm::dvec3& l, double tMax) const;
     const Scene& scene() const { return scene_; }
 
 private:

@@ -56,7 +56,8 @@ glm::dvec3 ReferenceRenderer::localShading(const ReferenceSettings& settings,
 
 // [region reference_direct]
 // Chapter 14: what the page's radiometry says, in double.
-glm::dvec3 ReferenceRenderer::directLight(const Material& m, const glm::dvec3& p,
+glm::dvec3 ReferenceRenderer::directLight(const ReferenceSettings& settings,
+                                          const Material& m, const glm::dvec3& p,
                                           double error, const glm::dvec3& n,
                                           const glm::dvec3& ns, const glm::dvec3& v,
                                           double local, double highlight) const {
@@ -76,12 +77,46 @@ glm::dvec3 ReferenceRenderer::directLight(const Material& m, const glm::dvec3& p
                               std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
         glm::dvec3 added = brdf * E * cosine;
         if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
+        if (settings.transmitShadows) {
+            glm::dvec3 toLight = light.position - from;
+            double d = glm::length(toLight);
+            color += added * (sun ? transmittedLight(settings, from, l, 1e300)
+                                  : transmittedLight(settings, from, toLight / d,
+                                                     d * (1 - 1e-5)));
+            continue;
+        }
         bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
         if (visible) color += added;
     }
     return color;
 }
 // [end]
+
+glm::dvec3 ReferenceRenderer::transmittedLight(const ReferenceSettings& settings,
+                                               glm::dvec3 from, const glm::dvec3& l,
+                                               double tMax) const {
+    glm::dvec3 kept(1);
+    for (int surfaces = 0; surfaces < kMaxPasses; ++surfaces) {
+        ReferenceHit hit = trace(from, l, 0, tMax);
+        if (hit.t < 0) return kept;
+        const Material m = hitMaterial(hit);
+        if (m.transmission <= 0) return glm::dvec3(0);
+        double cosine = std::abs(glm::dot(hit.normal, l));
+        kept *= m.transmission * (1 - referenceFresnel(settings.fresnelMode, m.f0, cosine,
+                                                       1.0, m.ior));
+        // inside from here to the next surface: absorbed on the way there
+        glm::dvec3 p = from + hit.t * l;
+        from = secondaryOrigin(p, hit.error, glm::dot(hit.normal, l) < 0 ? -hit.normal
+                                                                       : hit.normal);
+        if (tMax < 1e300) tMax -= glm::length(from - (p - hit.t * l));
+        if (hit.frontFace) {  // entering: Beer-Lambert to where it leaves
+            ReferenceHit out = trace(from, l, 0, tMax);
+            double inside = out.t < 0 ? tMax : out.t;
+            for (int c = 0; c < 3; ++c) kept[c] *= std::exp(-m.absorption[c] * inside);
+        }
+    }
+    return kept;
+}
 
 bool ReferenceRenderer::sunVisible(const glm::dvec3& from, const glm::dvec3& l) const {
     return trace(from, l, 0, 1e300).t < 0;
@@ -178,7 +213,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     if (settings.stage == ReferenceStage::Caustics) {
         // chapter 14: direct light in watts, and the photons' caustic light
         if (split.highlight > 0)
-            color += directLight(m, p, hit.error, n, ns, v, split.local, split.highlight);
+            color += directLight(settings, m, p, hit.error, n, ns, v, split.local,
+                                 split.highlight);
         if (split.local > 0 && photons_ && !settings.photonRadii.empty()) {
             // the mean of the frames' estimates
             color += split.local * m.kd / kPi * photons_->irradiance(p, n);
