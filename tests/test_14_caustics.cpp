@@ -258,6 +258,12 @@ TEST(Chapter14, DefaultSceneMatchesReferenceAtAFixedRadius) {
 }
 // [end]
 
+// --caustics transmit against the reference, which follows the same rule
+// (its own any-hit-free loop over the surfaces on the way).
+TEST(Chapter14, TransmittedShadowsMatchTheReference) {
+    rgtest::expectMatchesReference(RG_EXE_14, "", "14_transmit_reference", {"--caustics", "transmit"});
+}
+
 // The default scene's caustics, read off the picture: the clear ball's
 // shadow holds a spot brighter than the lit floor (the sun focused), and the
 // amber ball's shadow is amber (red above green above blue), where with
@@ -446,6 +452,24 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
     EXPECT_GT(photonsMax, 4 * lit) << "photons focus the sun";
 }
 // [end]
+
+// Page 14's other scenes, read off their pictures: a glass of water and a
+// mirror ring each focus the sun brighter than the open floor (twice it),
+// and nothing of it is left with --caustics off.
+TEST(Chapter14, TheWaterGlassAndTheRingFocusTheSun) {
+    std::string dir = rgtest::outputDir("14_scenes");
+    for (const char* name : {"water", "ring"}) {
+        std::string scene = std::string(RG_SOURCE_DIR "/assets/scenes/caustics_") + name + ".json";
+        Rendered on = render(scene, dir + "/" + name, 160, 90, {"--frames", "4"});
+        Rendered off = render(scene, dir + "/" + name + "_off", 160, 90, {"--frames", "1", "--caustics", "off"});
+        double lit = 0, focused = 0;
+        for (size_t i = 0; i < on.image.rgba.size(); i += 4) {
+            lit = std::max(lit, double(off.image.rgba[i + 1]));
+            focused = std::max(focused, double(on.image.rgba[i + 1] - off.image.rgba[i + 1]));
+        }
+        EXPECT_GT(focused, 2 * lit) << name << ": caustic " << focused << ", open floor " << lit;
+    }
+}
 
 // Lights in physical units belong to chapter 14; chapter 14 needs them.
 TEST(Chapter14, LightsInWattsOnlyWhereTheyAreTaught) {

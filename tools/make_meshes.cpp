@@ -11,6 +11,8 @@
 //   water.obj        the water in it, 52 mm deep: 0.3 mm into the glass all round,
 //                    so no film of air is left between (chapter 13's priorities)
 //   ice_cube.obj     a 22 mm ice cube
+//   ring.obj         a ring, 100 mm across, 20 mm tall, 2 mm wall (chapter 14's
+//                    mirror: the cardioid a cup throws)
 //   icosphere_N.obj  the unit icosphere at levels 1-5 (smooth normals)
 //   grid_box.obj     the cube [-1, 1]^3, each face a 32 x 32 grid of squares
 //                    (chapter 12's leak measurement: flat faces, exact edges)
@@ -203,6 +205,19 @@ rg::Mesh water() {
     point(27.8, 7.7, 1, 0), point(27.8, 60, 1, 0);
     point(27.8, 60, 0, 1), point(0, 60, 0, 1);
     return lathe(p, n, 128);
+}
+
+// A ring (a napkin ring, a cup without its base): a thin cylindrical shell
+// of outer radius r, wall w, height h, closed at both ends.
+rg::Mesh ring(double r, double w, double h) {
+    std::vector<glm::dvec2> p, n;
+    auto point = [&](double x, double y, double nx, double ny) { p.push_back({x, y}), n.push_back({nx, ny}); };
+    point(r, 0, 0, -1), point(r - w, 0, 0, -1);          // the bottom
+    point(r - w, 0, -1, 0), point(r - w, h, -1, 0);      // inside wall, facing the axis
+    point(r - w, h, 0, 1), point(r, h, 0, 1);            // the top
+    point(r, h, 1, 0), point(r, 0, 1, 0);                // outside wall
+    point(r, 0, 0, -1);                                  // back to the bottom (a crease)
+    return lathe(p, n, 256);
 }
 
 rg::Mesh torus(double major, double minor, int around, int across) {
@@ -456,6 +471,7 @@ int main(int argc, char** argv) {
         writeText(dir + "/tumbler.obj", toObj(tumbler(), "drinking glass, 60 mm across, 90 mm tall, 2.5 mm wall, 8 mm base, 3 mm inner fillet"));
         writeText(dir + "/water.obj", toObj(water(), "the water in tumbler.obj: y 7.7 to 60 mm, radius 27.8 mm"));
         writeText(dir + "/ice_cube.obj", toObj(box({22, 22, 22}), "ice cube, 22 mm, centred"));
+        writeText(dir + "/ring.obj", toObj(ring(50, 2, 20), "ring, 100 mm across, 20 mm tall, 2 mm wall, on y = 0"));
         for (int level = 1; level <= 5; ++level)
             writeText(dir + "/icosphere_" + std::to_string(level) + ".obj",
                       toObj(rg::icosphere(level), "unit icosphere, level " + std::to_string(level)));

@@ -24,6 +24,7 @@
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -401,6 +402,14 @@ FramePass photonPass(const FramePassContext& c) {
                                 {"first_radius", photons.radius},
                                 {"last_radius", photons.lastRadius},
                                 {"alpha", photons.alpha}}}};
+    };
+    // the window's overlay: how fast photons go, and the radius now
+    pass.overlay = [](double gpuMs) {
+        char line[96];
+        std::snprintf(line, sizeof line, "%.2f M photons/s, radius %.4g",
+                      gpuMs > 0 ? photons.photons / (gpuMs * 1e3) : 0.0,
+                      double(photons.lastRadius));
+        return std::string(line);
     };
     // the reference averages its estimates over the same frames' radii
     pass.reference = [](ReferenceSettings& r) {

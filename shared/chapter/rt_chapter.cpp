@@ -154,6 +154,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                        VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);
         // a window's camera, overlay and keys
         Viewer viewer(app, opts, scene, rt, target, loop, params);
+        viewer.chapterLine = pass.overlay;  // chapter 14's photons
         // F5, a save
         viewer.reloadShaders(shaders, [&](const RtShaders& compiled,
                                           DeletionQueue& deletion) {

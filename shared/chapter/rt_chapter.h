@@ -52,6 +52,9 @@ struct FramePass {
     // After the last frame: writes what the pass keeps (chapter 14's
     // --photons-ply) and returns its part of the run's report.
     std::function<nlohmann::json()> finish;
+    // A line for the window's overlay, given the frames' GPU ms (chapter
+    // 14: photons per second and the radius).
+    std::function<std::string(double gpuMs)> overlay;
     // What the CPU reference needs to know of the pass (chapter 14: the
     // frames' radii), given its settings for the frames rendered.
     std::function<void(ReferenceSettings&)> reference;

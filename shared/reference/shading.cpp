@@ -96,11 +96,17 @@ glm::dvec3 ReferenceRenderer::transmittedLight(const ReferenceSettings& settings
                                                glm::dvec3 from, const glm::dvec3& l,
                                                double tMax) const {
     glm::dvec3 kept(1);
+    bool absorbed = false;  // the glass the ray is in has been accounted for
     for (int surfaces = 0; surfaces < kMaxPasses; ++surfaces) {
         ReferenceHit hit = trace(from, l, 0, tMax);
         if (hit.t < 0) return kept;
         const Material m = hitMaterial(hit);
         if (m.transmission <= 0) return glm::dvec3(0);
+        // leaving glass the ray started in (a highlight's shadow ray from
+        // inside a ball): absorbed from its start
+        if (!hit.frontFace && !absorbed)
+            for (int c = 0; c < 3; ++c) kept[c] *= std::exp(-m.absorption[c] * hit.t);
+        absorbed = false;
         double cosine = std::abs(glm::dot(hit.normal, l));
         kept *= m.transmission * (1 - referenceFresnel(settings.fresnelMode, m.f0, cosine,
                                                        1.0, m.ior));
@@ -113,6 +119,7 @@ glm::dvec3 ReferenceRenderer::transmittedLight(const ReferenceSettings& settings
             ReferenceHit out = trace(from, l, 0, tMax);
             double inside = out.t < 0 ? tMax : out.t;
             for (int c = 0; c < 3; ++c) kept[c] *= std::exp(-m.absorption[c] * inside);
+            absorbed = true;
         }
     }
     return kept;

@@ -51,6 +51,9 @@ public:
     // Set by the chapter each frame: its frames average while the picture
     // rests (--antialias, chapter 11's accumulation); the overlay counts them.
     bool averaging = false;
+    // Set by the chapter: a line of its own numbers under the overlay's
+    // first two, given the frames' GPU ms (chapter 14: photons/s, radius).
+    std::function<std::string(double gpuMs)> chapterLine;
 
     // Shader hot reload (shader_reload.h), in a window: when a source of
     // `shaders` is saved, or on F5, and it compiles, `rebuild` makes the

@@ -31,6 +31,10 @@ void Viewer::drawOverlay(uint32_t frame) {
     else
         ImGui::Text("%ux%u, %llu rays, one frame", rt_.width, rt_.height,
                     (unsigned long long)raysPerFrame_);
+    if (chapterLine)  // the chapter's own: chapter 14's photons
+        ImGui::Text("%s",
+                    chapterLine(times.gpuMs.empty() ? 0.0 : recentMedian(times.gpuMs))
+                        .c_str());
     ImGui::PushItemWidth(140);
     bool chapterParams = std::any_of(params_.all().begin(), params_.all().end(),
                                      [](const Param& p) { return p.section.empty(); });

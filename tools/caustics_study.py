@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Chapter 14's speed against error (issue 47, performance.md): the error of
+the progressive photon map against the frames averaged and the GPU time
+they took, with the shrinking radius (Knaus and Zwicker's alpha = 2/3) and
+with the first radius kept (alpha = 1), into OUT/caustics.json and
+OUT/caustics.md.
+
+    tools/caustics_study.py --bin build/bin --out docs/perf/<device>
+                            [--width W] [--height H] [--truth-frames N] [--max-frames M]
+                            [--photons P]
+    tools/caustics_study.py --out docs/perf/<device> --tables-only   (from its caustics.json)
+
+On the default scene (caustics.json). The "converged" picture is the
+chapter's own after N frames of 4 P photons each with the shrinking radius:
+a consistent estimate, so its bias and noise are the smallest of all the
+runs (the CPU reference is not used: its dense photon grid grows sparse at
+the small radii of late frames, page 14). Then 1, 2, 4, ... M frames of P
+photons, each mode: the RMSE (linear) over the caustic pixels (where the
+converged picture differs from --caustics off by more than 1/255 in
+display) and over the whole image, and the GPU time per frame over the run.
+Standard library only, so it runs on the GPU machine too.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from study import read_pfm, run_study, srgb
+
+EXE = "14_caustics"
+MODES = (("shrinking", ["--alpha", "0.6667"]), ("fixed", ["--alpha", "1"]))
+
+
+def run(exe, size, extra, png):
+    cmd = [exe, "--headless", "--width", str(size[0]), "--height", str(size[1]), "--output", png] + extra
+    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if done.returncode != 0:
+        sys.exit(f"caustics_study.py: {' '.join(cmd)} failed:\n{done.stdout}")
+    with open(os.path.splitext(png)[0] + ".json") as f:
+        return json.load(f)
+
+
+def rmse(a, b, pixels):
+    n = a[2]
+    if not pixels:
+        return 0.0
+    return math.sqrt(sum((a[3][n * i + c] - b[3][n * i + c]) ** 2 for i in pixels for c in range(3)) /
+                     (3 * len(pixels)))
+
+
+def measure(args):
+    size = (args.width, args.height)
+    exe = os.path.join(args.bin, EXE)
+    data = {"width": size[0], "height": size[1], "truth_frames": args.truth_frames, "photons": args.photons,
+            "runs": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        print(f"{EXE} at {size[0]}x{size[1]}: converged picture of {args.truth_frames} frames")
+        truth_report = run(exe, size, ["--frames", str(args.truth_frames), "--photons", str(4 * args.photons)],
+                           os.path.join(tmp, "truth.png"))
+        data["device"], data["driver"] = truth_report["device"], truth_report["driver"]
+        truth = read_pfm(os.path.join(tmp, "truth.pfm"))
+        run(exe, size, ["--frames", "1", "--caustics", "off"], os.path.join(tmp, "off.png"))
+        off = read_pfm(os.path.join(tmp, "off.pfm"))
+        n = truth[2]
+        caustic = [i for i in range(size[0] * size[1])
+                   if max(abs(srgb(truth[3][n * i + c]) - srgb(off[3][n * i + c])) for c in range(3)) * 255 > 1]
+        data["caustic_pixels"] = len(caustic)
+        frames = 1
+        while frames <= args.max_frames:
+            for mode, extra in MODES:
+                png = os.path.join(tmp, f"{mode}_{frames}.png")
+                report = run(exe, size, ["--frames", str(frames), "--photons", str(args.photons)] + extra, png)
+                image = read_pfm(os.path.splitext(png)[0] + ".pfm")
+                ms = report["gpu_ms"]["median"]
+                data["runs"].append({"mode": mode, "frames": frames, "gpu_ms_per_frame": ms,
+                                     "seconds": frames * ms / 1000,
+                                     "rmse_caustic": rmse(image, truth, caustic),
+                                     "rmse_all": rmse(image, truth, list(range(size[0] * size[1])))})
+                print(f"  {mode:9s} {frames:5d} frames: {ms:.1f} ms/frame, RMSE caustic "
+                      f"{data['runs'][-1]['rmse_caustic']:.4f}")
+            frames *= 2
+    return data
+
+
+def tables(data):
+    out = [f"**Chapter 14, speed against error** on {data['device']} (`tools/caustics_study.py`): "
+           f"the default scene at {data['width']}x{data['height']}, {data['photons']} photons a frame; "
+           f"RMSE (linear) against the chapter's picture after {data['truth_frames']} frames of "
+           f"{4 * data['photons']} photons with the shrinking radius, over the {data['caustic_pixels']} "
+           "caustic pixels (and over all pixels).\n",
+           "| frames | seconds (shrinking) | RMSE, shrinking radius | RMSE, fixed radius | all pixels, shrinking | "
+           "all pixels, fixed |",
+           "| --- | --- | --- | --- | --- | --- |"]
+    by = {(r["mode"], r["frames"]): r for r in data["runs"]}
+    for frames in sorted({r["frames"] for r in data["runs"]}):
+        s, f = by[("shrinking", frames)], by[("fixed", frames)]
+        out.append(f"| {frames} | {s['seconds']:.2f} | {s['rmse_caustic']:.4f} | {f['rmse_caustic']:.4f} | "
+                   f"{s['rmse_all']:.4f} | {f['rmse_all']:.4f} |")
+    return "\n".join(out) + "\n"
+
+
+def options(p):
+    p.set_defaults(width=320, height=180)
+    p.add_argument("--truth-frames", type=int, default=512)
+    p.add_argument("--max-frames", type=int, default=256)
+    p.add_argument("--photons", type=int, default=100000)
+
+
+if __name__ == "__main__":
+    run_study("caustics", __doc__, measure, tables, options)
