@@ -264,7 +264,8 @@ struct RtPush {
     float photonRadius;  // this frame's gathering radius (world units)
     uint photonsEmitted;  // photons traced from the lights this frame
     uint caustics;        // chapter 14's --caustics: CAUSTICS_*
-    uint unused0, unused1, unused2;
+    uint photonSeed;      // chapter 14's --photon-seed: another set of photons
+    uint unused1, unused2;
 };
 RG_SIZE(RtPush, 80);
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows

@@ -11,7 +11,8 @@ OUT/caustics.md.
     tools/caustics_study.py --out docs/perf/<device> --tables-only   (from its caustics.json)
 
 On the default scene (caustics.json). The "converged" picture is the
-chapter's own after N frames of 4 P photons each with the shrinking radius:
+chapter's own after N frames of 4 P photons each with the shrinking radius,
+drawn independently of the runs' photons (--photon-seed):
 a consistent estimate, so its bias and noise are the smallest of all the
 runs (the CPU reference is not used: its dense photon grid grows sparse at
 the small radii of late frames, page 14). Then 1, 2, 4, ... M frames of P
@@ -57,8 +58,9 @@ def measure(args):
             "runs": []}
     with tempfile.TemporaryDirectory() as tmp:
         print(f"{EXE} at {size[0]}x{size[1]}: converged picture of {args.truth_frames} frames")
-        truth_report = run(exe, size, ["--frames", str(args.truth_frames), "--photons", str(4 * args.photons)],
-                           os.path.join(tmp, "truth.png"))
+        # its own photons (--photon-seed), independent of the runs' below
+        truth_report = run(exe, size, ["--frames", str(args.truth_frames), "--photons", str(4 * args.photons),
+                                       "--photon-seed", "1"], os.path.join(tmp, "truth.png"))
         data["device"], data["driver"] = truth_report["device"], truth_report["driver"]
         truth = read_pfm(os.path.join(tmp, "truth.pfm"))
         run(exe, size, ["--frames", "1", "--caustics", "off"], os.path.join(tmp, "off.png"))

@@ -7,8 +7,8 @@
 # The scaling study is tools/scaling.py (--out docs/perf/<device>), run apart:
 # it takes minutes on lavapipe; this script plots and includes its results.
 # So are chapter 04's antialiasing, tools/antialias_study.py, chapter 12's,
-# tools/meshes_study.py, and chapter 13's, tools/real_glass_study.py (the
-# same --out).
+# tools/meshes_study.py, chapter 13's, tools/real_glass_study.py, and
+# chapter 14's, tools/caustics_study.py (the same --out).
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -68,7 +68,8 @@ section() {
            "\`tools/real_glass_study.py\` for 13)."
       echo
     fi
-    for study in antialias meshes real_glass; do  # tools/antialias_study.py, meshes_study.py, real_glass_study.py
+    # tools/antialias_study.py, meshes_study.py, real_glass_study.py, caustics_study.py
+    for study in antialias meshes real_glass caustics; do
       if [ -f "$dir/$study.md" ]; then
         cat "$dir/$study.md"
         echo

@@ -45,6 +45,8 @@ struct PhotonSettings {
     // --reference-photons: the CPU reference's photons from each light and
     // glass, a stratified grid this many a side
     int referenceGrid = 1000;
+    // --photon-seed: another set of photons (independent runs, for studies)
+    int seed = 0;
     float lastRadius = 0;  // the last frame's radius (the report)
 };
 
@@ -334,6 +336,10 @@ void declareOptions(Params& params, RtChapterSettings& s) {
                  16, 4000)
         .live = false;
     params
+        .integer("--photon-seed", photons.seed,
+                 "Draw another set of photons (an independent estimate)", 0, 1000000)
+        .live = false;
+    params
         .text("--photons-ply", photons.ply,
               "Write the last frame's photons to this PLY point cloud")
         .live = false;
@@ -384,6 +390,7 @@ FramePass photonPass(const FramePassContext& c) {
     pass.record = [map, &rt](VkCommandBuffer cmd, gpu::RtPush& push,
                              uint32_t accumulated) {
         push.caustics = CAUSTICS_PHOTONS;
+        push.photonSeed = uint32_t(photons.seed);
         photons.lastRadius = frameRadius(photons, accumulated);
         recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
                         photons.lastRadius);
