@@ -471,6 +471,27 @@ TEST(Chapter14, TheWaterGlassAndTheRingFocusTheSun) {
     }
 }
 
+// Page 14's prism scene: sunlight through a slit and a prism paints a
+// spectrum on the wall, red bent least: in the picture (the camera looks
+// at the wall with the undeviated side on the left) the red light's
+// centroid lies left of the green's, and the green's left of the blue's.
+TEST(Chapter14, ThePrismPaintsASpectrum) {
+    std::string dir = rgtest::outputDir("14_prism_scene");
+    Rendered run = render(RG_SOURCE_DIR "/assets/scenes/caustics_prism.json", dir + "/prism", 160, 90,
+                          {"--frames", "16"});
+    glm::dvec3 sum(0), weighted(0);
+    for (uint32_t y = 0; y < run.image.height; ++y)
+        for (uint32_t x = 0; x < run.image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double v = std::max(0.0f, run.image.rgba[(size_t(y) * run.image.width + x) * 4 + c]);
+                sum[c] += v, weighted[c] += v * x;
+            }
+    ASSERT_GT(std::min({sum.r, sum.g, sum.b}), 0.0) << "no spectrum on the wall";
+    glm::dvec3 centroid = weighted / sum;
+    EXPECT_LT(centroid.r + 3, centroid.g) << "red at x " << centroid.r << ", green " << centroid.g;
+    EXPECT_LT(centroid.g + 3, centroid.b) << "green at x " << centroid.g << ", blue " << centroid.b;
+}
+
 // Lights in physical units belong to chapter 14; chapter 14 needs them.
 TEST(Chapter14, LightsInWattsOnlyWhereTheyAreTaught) {
     std::string dir = rgtest::outputDir("14_keys");
