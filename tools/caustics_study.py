@@ -21,34 +21,17 @@ converged picture differs from --caustics off by more than 1/255 in
 display) and over the whole image, and the GPU time per frame over the run.
 Standard library only, so it runs on the GPU machine too.
 """
-import json
-import math
 import os
-import subprocess
-import sys
 import tempfile
 
-from study import read_pfm, run_study, srgb
+from study import read_pfm, rmse, run_chapter, run_study, srgb
 
 EXE = "14_caustics"
 MODES = (("shrinking", ["--alpha", "0.6667"]), ("fixed", ["--alpha", "1"]))
 
 
 def run(exe, size, extra, png):
-    cmd = [exe, "--headless", "--width", str(size[0]), "--height", str(size[1]), "--output", png] + extra
-    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if done.returncode != 0:
-        sys.exit(f"caustics_study.py: {' '.join(cmd)} failed:\n{done.stdout}")
-    with open(os.path.splitext(png)[0] + ".json") as f:
-        return json.load(f)
-
-
-def rmse(a, b, pixels):
-    n = a[2]
-    if not pixels:
-        return 0.0
-    return math.sqrt(sum((a[3][n * i + c] - b[3][n * i + c]) ** 2 for i in pixels for c in range(3)) /
-                     (3 * len(pixels)))
+    return run_chapter("caustics_study.py", exe, size, extra, png)
 
 
 def measure(args):

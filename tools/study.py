@@ -6,8 +6,10 @@ the JSON. Standard library only, so the studies run on the GPU machine too.
 """
 import argparse
 import json
+import math
 import os
 import struct
+import subprocess
 import sys
 
 
@@ -47,6 +49,27 @@ def run_study(name, doc, measure, tables, add_options=None, check=None):
     with open(out, "w") as f:
         f.write(tables(data))
     print(f"wrote {out}")
+
+
+def run_chapter(tool, exe, size, extra, png):
+    """Runs a chapter headless at size (w, h) with the extra options, its
+    picture into png (and .pfm), and returns its report; a failed run ends
+    the study with its output."""
+    cmd = [exe, "--headless", "--width", str(size[0]), "--height", str(size[1]), "--output", png] + extra
+    done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if done.returncode != 0:
+        sys.exit(f"{tool}: {' '.join(cmd)} failed:\n{done.stdout}")
+    with open(os.path.splitext(png)[0] + ".json") as f:
+        return json.load(f)
+
+
+def rmse(a, b, pixels):
+    """Linear RMSE of two read_pfm images over the pixels listed, all three channels."""
+    n = a[2]
+    if not pixels:
+        return 0.0
+    return math.sqrt(sum((a[3][n * i + c] - b[3][n * i + c]) ** 2 for i in pixels for c in range(3)) /
+                     (3 * len(pixels)))
 
 
 def read_pfm(path):
