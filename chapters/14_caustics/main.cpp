@@ -252,14 +252,18 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
 }
 // [end]
 
-// The last frame's photon map, copied to the host (waits for the GPU).
+// The last frame's photon map's counts, and with `withPhotons` its stored
+// photons too (--photons-ply), copied to the host (waits for the GPU).
 struct LastPhotons {
     gpu::PhotonMapHeader header{};  // its counts
     std::vector<gpu::Photon> stored;
 };
-LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap& map) {
+LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap& map,
+                        bool withPhotons) {
     constexpr VkDeviceSize headerBytes = sizeof(gpu::PhotonMapHeader);
-    VkDeviceSize bytes = headerBytes + VkDeviceSize(map.capacity) * sizeof(gpu::Photon);
+    VkDeviceSize bytes =
+        headerBytes +
+        (withPhotons ? VkDeviceSize(map.capacity) * sizeof(gpu::Photon) : 0);
     Buffer host =
         createHostBuffer(gpu, deletion, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     submitOnce(gpu, [&](VkCommandBuffer cmd) {
@@ -268,13 +272,15 @@ LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap
         VkBufferCopy header{.size = headerBytes};
         vkCmdCopyBuffer(cmd, map.header.handle, host.handle, 1, &header);
         VkBufferCopy photons{.dstOffset = headerBytes, .size = bytes - headerBytes};
-        vkCmdCopyBuffer(cmd, map.photons.handle, host.handle, 1, &photons);
+        if (withPhotons)
+            vkCmdCopyBuffer(cmd, map.photons.handle, host.handle, 1, &photons);
     });
     LastPhotons last;
     const auto* data = static_cast<const char*>(host.mapped);
     std::memcpy(&last.header, data, headerBytes);
     const auto* first = reinterpret_cast<const gpu::Photon*>(data + headerBytes);
-    last.stored.assign(first, first + std::min(last.header.stored, map.capacity));
+    if (withPhotons)
+        last.stored.assign(first, first + std::min(last.header.stored, map.capacity));
     return last;
 }
 
@@ -396,7 +402,7 @@ FramePass photonPass(const FramePassContext& c) {
                         photons.lastRadius);
     };
     pass.finish = [map, &app, &scene] {
-        LastPhotons last = readPhotons(app.gpu, app.deletion, *map);
+        LastPhotons last = readPhotons(app.gpu, app.deletion, *map, !photons.ply.empty());
         if (!photons.ply.empty()) writePhotonsPly(photons.ply, last.stored, scene.origin);
         // the last frame's photons: stored (a caustic), escaped, stopped by a limit
         return nlohmann::json{{"photons",
