@@ -174,6 +174,16 @@ std::vector<double> ballLensRings(double n, double floorY, const std::vector<dou
     return power;
 }
 
+// A glass ball (n, radius 1) under the sun, its centre f above a floor at y = 0.
+nlohmann::json ballLensScene(glm::dvec3 sun, double n, double f) {
+    return sunScene(
+        sun,
+        {{"floor", {{"ka", 0}, {"kd", 0.8}}},
+         {"glass", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}}}},
+        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {4, 0, 0}}, {"v", {0, 0, -4}}, {"material", "floor"}},
+         {{"type", "sphere"}, {"center", {0, f, 0}}, {"radius", 1}, {"material", "glass"}}});
+}
+
 // [region ball_lens]
 // A glass ball of radius 1 under the sun, the floor at the paraxial focus
 // f = n R / (2 (n - 1)) below its centre. The photons stored on the floor
@@ -183,12 +193,7 @@ std::vector<double> ballLensRings(double n, double floorY, const std::vector<dou
 TEST(Chapter14, BallLensCausticMatchesParallelRays) {
     std::string dir = rgtest::outputDir("14_ball_lens");
     const double n = 1.5, f = n / (2 * (n - 1)), centreY = f;  // the floor at y = 0
-    nlohmann::json scene = sunScene(
-        {0, -1, 0},
-        {{"floor", {{"ka", 0}, {"kd", 0.8}}},
-         {"glass", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}}}},
-        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {4, 0, 0}}, {"v", {0, 0, -4}}, {"material", "floor"}},
-         {{"type", "sphere"}, {"center", {0, centreY, 0}}, {"radius", 1}, {"material", "glass"}}});
+    nlohmann::json scene = ballLensScene({0, -1, 0}, n, centreY);
     std::string ply = dir + "/photons.ply";
     Rendered run = render(writeScene(dir, "ball", scene), dir + "/ball", 64, 48,
                      {"--frames", "1", "--photons", "400000", "--photons-ply", ply});
@@ -427,12 +432,7 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
     // The ball lens of BallLensCausticMatchesParallelRays, seen from above
     // past the ball's side: the floor in its shadow.
     const double f = n / (2 * (n - 1));
-    nlohmann::json ball = sunScene(
-        {0.5, -1, 0},
-        {{"floor", {{"ka", 0}, {"kd", 0.8}}},
-         {"glass", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}}}},
-        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {4, 0, 0}}, {"v", {0, 0, -4}}, {"material", "floor"}},
-         {{"type", "sphere"}, {"center", {0, f, 0}}, {"radius", 1}, {"material", "glass"}}});
+    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
     ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
     std::string path = writeScene(dir, "ball", ball);
     Rendered transmit = render(path, dir + "/ball_transmit", 96, 96, {"--frames", "1", "--caustics", "transmit"});
