@@ -48,6 +48,7 @@ struct PhotonSettings {
     // --photon-seed: another set of photons (independent runs, for studies)
     int seed = 0;
     float lastRadius = 0;  // the last frame's radius (the report)
+    bool kept = false;     // the last frame reused the map before it (the overlay)
 };
 
 // [region emitters]
@@ -141,6 +142,8 @@ struct PhotonMap {
     Buffer header, photons, sorted, cells, emitters;
     uint32_t capacity = 0, cellCount = 0, emitterCount = 0;
     RtPipeline tracer;  // photon.rgen with the scene's hit groups
+    uint32_t traced = 0;  // maps traced in this run (the report)
+    float radius = 0;     // the radius of the map traced last (0: none yet)
     VkPipelineLayout gridLayout = VK_NULL_HANDLE;
     VkPipeline count = VK_NULL_HANDLE, scan = VK_NULL_HANDLE, scatter = VK_NULL_HANDLE;
 };
@@ -379,7 +382,7 @@ FramePass photonPass(const FramePassContext& c) {
     }
     FramePass pass;
     if (photons.caustics != PhotonSettings::kPhotons) {  // no photon map
-        pass.record = [](VkCommandBuffer, gpu::RtPush& push, uint32_t) {
+        pass.record = [](VkCommandBuffer, gpu::RtPush& push, FrameChange) {
             push.caustics = photons.caustics == PhotonSettings::kTransmit
                                 ? CAUSTICS_TRANSMIT
                                 : CAUSTICS_OFF;
@@ -394,12 +397,26 @@ FramePass photonPass(const FramePassContext& c) {
     App& app = c.app;
     const Scene& scene = c.scene;
     pass.record = [map, &rt](VkCommandBuffer cmd, gpu::RtPush& push,
-                             uint32_t accumulated) {
+                             FrameChange change) {
         push.caustics = CAUSTICS_PHOTONS;
         push.photonSeed = uint32_t(photons.seed);
-        photons.lastRadius = frameRadius(photons, accumulated);
+        photons.lastRadius = frameRadius(photons, change.accumulated);
+        // The map does not depend on the camera: while only the view moves
+        // (every such frame starts a new average, at the first radius), the
+        // map of the first radius is kept, and a light, material or
+        // parameter changed traces it again.
+        photons.kept = change.viewOnly && map->radius == photons.lastRadius;
+        if (photons.kept) {
+            push.photonMap = {uint32_t(map->header.address),
+                              uint32_t(map->header.address >> 32)};
+            push.photonRadius = map->radius;
+            push.photonsEmitted = uint32_t(photons.photons);
+            return;
+        }
         recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
                         photons.lastRadius);
+        map->radius = photons.lastRadius;
+        ++map->traced;
     };
     pass.finish = [map, &app, &scene] {
         LastPhotons last = readPhotons(app.gpu, app.deletion, *map, !photons.ply.empty());
@@ -410,6 +427,7 @@ FramePass photonPass(const FramePassContext& c) {
                                 {"stored_last_frame", last.header.stored},
                                 {"escaped_last_frame", last.header.escaped},
                                 {"lost_last_frame", last.header.lost},
+                                {"maps_traced", map->traced},
                                 {"emitters", map->emitterCount},
                                 {"grid_cells", map->cellCount},
                                 {"first_radius", photons.radius},
@@ -419,6 +437,7 @@ FramePass photonPass(const FramePassContext& c) {
     // the window's overlay: how fast photons go, and the radius now
     pass.overlay = [](double gpuMs) {
         char line[96];
+        if (photons.kept) return std::string("photon map kept while the view moves");
         std::snprintf(line, sizeof line, "%.2f M photons/s, radius %.4g",
                       gpuMs > 0 ? photons.photons / (gpuMs * 1e3) : 0.0,
                       double(photons.lastRadius));

@@ -185,7 +185,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .exposure = std::exp2(settings.exposure),
                 .antialias = jitter,
             };
-            if (pass.record) pass.record(cmd, push, push.accumulated);
+            if (pass.record)
+                pass.record(cmd, push, {push.accumulated, viewer.viewOnlyChanged()});
             last = push;
             if (canTwo)
                 recordLaunches(cmd, two, pipeline, rt.descriptors.set, push, size.width,

@@ -43,11 +43,15 @@ struct RtShaders;
 
 // Chapter 14 on: a pass of the chapter's own recorded before each frame's
 // camera rays (the photon map), made once the scene is on the GPU.
+// What changed for a frame, as a FramePass needs to know it.
+struct FrameChange {
+    uint32_t accumulated;  // frames already averaged into the picture
+    bool viewOnly;         // only the view changed (a window's camera): not the light
+};
 struct FramePass {
     // Records the pass for a frame; it may fill the push constants' fields
     // the camera rays read (the photon map's address, the radius).
-    // `accumulated`: frames already averaged into the picture.
-    std::function<void(VkCommandBuffer cmd, gpu::RtPush& push, uint32_t accumulated)>
+    std::function<void(VkCommandBuffer cmd, gpu::RtPush& push, FrameChange change)>
         record;
     // After the last frame: writes what the pass keeps (chapter 14's
     // --photons-ply) and returns its part of the run's report.

@@ -104,6 +104,8 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
     }
 
     bool upload = cameraDirty_ || materialDirty_ || lightsDirty_;
+    // lights, materials, parameters and shaders change what light does
+    bool lighting = materialDirty_ || lightsDirty_ || changed_;
     if (upload) beforeUpload(cmd);
     if (cameraDirty_) {  // the two matrices at the start of RtCamera (host_device.h)
         scene_.camera = camera_.camera();  // the report and --reference see this view
@@ -135,6 +137,7 @@ uint32_t Viewer::update(VkCommandBuffer cmd, uint32_t frame) {
                     scale);
         std::fflush(stdout);
     }
+    viewOnly_ = (cameraDirty_ || scale != scale_) && !lighting;
     scale_ = scale;
     frameScales_.push_back(uint8_t(scale));  // index: frame
     loop_.shown = launchSize();

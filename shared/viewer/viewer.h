@@ -47,6 +47,10 @@ public:
     // window shows that corner, scaled up). previewed(): the last frame was such.
     VkExtent2D launchSize() const;
     bool previewed() const { return scale_ > 1; }
+    // This frame's change, if any, was of the view alone (the camera, the
+    // preview's size, the window's): what does not depend on the camera
+    // still holds (chapter 14's photon map). Headless: never.
+    bool viewOnlyChanged() const { return viewOnly_; }
 
     // Set by the chapter each frame: its frames average while the picture
     // rests (--antialias, chapter 11's accumulation); the overlay counts them.
@@ -113,6 +117,7 @@ private:
 
     uint32_t firstFrame_ = 0;  // of the current progressive average
     bool changed_ = false;     // view or parameter changed: restart the average
+    bool viewOnly_ = false;    // this frame's change was the view's alone
     bool cameraDirty_ = true;  // upload the camera's matrices
     int selectedMaterial_ = -1;
     bool openMaterial_ = false;  // a pick opens the overlay's material section
