@@ -9,6 +9,7 @@ namespace shader {
 // rt_bindings.glsl's specialization constant; a test may switch it off
 inline bool kCarefulSizes = true;
 #include "fresnel.glsl"
+#include "microfacet.glsl"
 #include "sphere_intersect.glsl"
 #undef RG_OUT
 #undef RG_PRECISE
