@@ -1,5 +1,5 @@
 // Exercise, chapter 14: density estimation, the photons' light at a point.
-// replaces: 14_caustics/gather.glsl#gather
+// replaces: common/gather.glsl#gather
 // The irradiance at p is the power of the photons within the radius r
 // (push.photonRadius) over the disc's area, pi r^2, counting only photons
 // that arrived on the side n faces (unpackSnorm4x8(photon.normal).xyz . n > 0).

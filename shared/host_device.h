@@ -265,12 +265,15 @@ struct RtPush {
     uint photonsEmitted;  // photons traced from the lights this frame
     uint caustics;        // chapter 14's --caustics: CAUSTICS_*
     uint photonSeed;      // chapter 14's --photon-seed: another set of photons
-    uint unused1, unused2;
+    uint facetSampling;   // chapter 15's --sampling: FACETS_VISIBLE or FACETS_CONE
+    uint unused2;
 };
 RG_SIZE(RtPush, 80);
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
 #define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)
+#define FACETS_VISIBLE 0u  // a rough hit draws a visible normal (microfacet.glsl)
+#define FACETS_CONE 1u     // ... or a direction in chapter 11's cone (the comparison)
 
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {

@@ -510,7 +510,7 @@ TEST(Chapter14, LightsInWattsOnlyWhereTheyAreTaught) {
     rgtest::RunResult thesis =
         rgtest::run(RG_EXE_14, {"--headless", "--scene", writeScene(dir, "thesis", scene), "--output", dir + "/y.png"});
     EXPECT_EQ(thesis.exitCode, 2);
-    EXPECT_NE(thesis.output.find("chapter 14 needs lights in physical units"), std::string::npos) << thesis.output;
+    EXPECT_NE(thesis.output.find("chapters 14-15 need lights in physical units"), std::string::npos) << thesis.output;
     scene["lights"] = {{{"position", {0, 3, 0}}, {"power", 1}, {"intensity", 1}}};
     rgtest::RunResult both =
         rgtest::run(RG_EXE_14, {"--headless", "--scene", writeScene(dir, "both", scene), "--output", dir + "/z.png"});

@@ -279,7 +279,11 @@ TEST(Microfacet, OneBounceFurnaceLosesEnergyWithRoughnessNeverGains) {
         EXPECT_LE(e60, last + 1e-4) << "the loss grows with alpha";
         last = e60;
     }
-    EXPECT_LT(albedo(1.0f, 1, 1.5f, 1.047), 0.97) << "at alpha = 1 single scattering loses several per cent";
+    // page 15: at alpha = 1 one surface keeps about three quarters entering
+    // glass at 60 degrees, under half leaving it
+    EXPECT_NEAR(albedo(1.0f, 1, 1.5f, 1.047), 0.75, 0.05);
+    EXPECT_LT(albedo(1.0f, 1.5f, 1, 0), 0.5);
+    EXPECT_LT(albedo(1.0f, 1.5f, 1, 0.524), 0.5);
 }
 
 TEST(Microfacet, SmoothLimitIsTheMirrorAndSnell) {

@@ -69,6 +69,29 @@ def rmse_from_64_rays(report, png):
     return float(numpy.sqrt(((image - _truths["far_floor"]) ** 2).mean()))
 
 
+FURNACE = ["--width", "64", "--height", "64", "--frames", "16", "--caustics", "off"]
+
+
+def furnace_loss(roughness):
+    """Page 15's white furnace: the per cent of the sky's light a rough glass
+    ball (furnace.json at `roughness`) loses, from the mean over its inner
+    disc at 64x64 (tests/test_15_frosted_glass.cpp's measure)."""
+    def measure(report, png):
+        scene = json.loads((ROOT / "assets" / "scenes" / "furnace.json").read_text())
+        scene["materials"]["rough_glass"]["roughness"] = roughness
+        path = png.parent / f"furnace_scene_{roughness}.json"
+        path.write_text(json.dumps(scene))
+        out = png.parent / f"furnace_{roughness}.png"
+        subprocess.run([str(BIN / "15_frosted_glass"), "--headless", "--scene", str(path), *FURNACE,
+                        "--output", str(out)], cwd=ROOT, check=True, capture_output=True, timeout=600)
+        image = read_pfm(out.with_suffix(".pfm"))
+        h, w = image.shape[:2]
+        ys, xs = numpy.mgrid[0:h, 0:w]
+        disc = numpy.hypot(xs + 0.5 - w / 2, ys + 0.5 - h / 2) <= 0.25 * w
+        return 100 * (1 - float(image[disc].mean()))
+    return measure
+
+
 def rmse(page, pattern, command, tolerance, lavapipe=True):
     """A claim of the reference error's RMSE (linear)."""
     return {"page": page, "pattern": pattern, "command": command, "tolerance": tolerance,
@@ -137,6 +160,16 @@ CLAIMS = [
                ["14_caustics", "--reference", "--width", "160", "--height", "90", "--frames", "32",
                 "--photons", "400000", "--radius", "0.05", "--alpha", "1"],
                0.007),  # one pixel of 14,400
+    pixels_off("15_frosted_glass.md", r"\n  ([0-9.]+) % of pixels by more than 1/255 on lavapipe",
+               ["15_frosted_glass", "--reference", "--width", "160", "--height", "90", "--frames", "4",
+                "--caustics", "off"], 0.007),  # one pixel of 14,400
+    # page 15's white furnace: the loss at each roughness the page gives
+    *[{"page": "15_frosted_glass.md", "pattern": pattern,
+       "command": ["15_frosted_glass", "--scene", "assets/scenes/furnace.json", *FURNACE],
+       "measure": furnace_loss(roughness), "tolerance": 1.0, "lavapipe": True}  # 1 % of the light
+      for roughness, pattern in ((0.1, r"a loss of ([0-9.]+) % at roughness 0.1"),
+                                 (0.3, r"([0-9.]+) % at 0.3"), (0.6, r"([0-9.]+) % at 0.6"),
+                                 (1.0, r"([0-9.]+) % at 1.0 for the glass ball"))],
     rays("13_real_glass.md", r"this chapter traces ([0-9.]+) million\s+rays a frame",
          ["13_real_glass", "--width", "800", "--height", "450"], 0.01, scale=1e6,
          lavapipe=True),  # the page's last digit

@@ -23,7 +23,7 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 # bottom first; a folder includes only folders before it
-LAYERS = ["core", "vulkan", "scene", "raytracing", "reference", "app", "viewer", "chapter"]
+LAYERS = ["core", "vulkan", "scene", "raytracing", "reference", "app", "viewer", "chapter", "photons"]
 # directly in shared/: what every layer may include, and the build file
 TOP = {"CMakeLists.txt", "host_device.h", "vk_check.h"}
 MAX_LINES = 520  # "about 500": a file past it gets split by concern

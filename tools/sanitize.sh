@@ -15,7 +15,7 @@ build=build-asan
 
 chapters=(01_vulkan_setup 02_synchronization 03_acceleration_structures 04_raygen_miss 05_ambient 06_diffuse
           07_specular 08_reflection 09_fresnel 10_refraction 11_rough 12_triangle_meshes 13_real_glass
-          14_caustics)
+          14_caustics 15_frosted_glass)
 units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults test_12_triangle_meshes)
 echo "== sanitizer build in $build (ASan + UBSan, -O1)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON >/dev/null ||
@@ -65,7 +65,7 @@ for c in "${chapters[@]}"; do
   args=(--headless --validation --width 64 --height 36 --frames 2 --output "$out/$c.png")
   [ "${c%%_*}" -ge 4 ] && args+=(--reference)
   # a small photon map and reference (the sanitized reference is slow)
-  [ "$c" = 14_caustics ] && args+=(--photons 4000 --reference-photons 64)
+  [ "$c" = 14_caustics ] || [ "$c" = 15_frosted_glass ] && args+=(--photons 4000 --reference-photons 64)
   check "$c" env LD_PRELOAD="$preload" "$build/bin/$c" "${args[@]}"
 done
 echo "sanitizers: $passed passed, $failed failed"

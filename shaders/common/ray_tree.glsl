@@ -5,6 +5,9 @@
 #define RAY_TREE_GLSL
 #include "fresnel.glsl"
 #include "media.glsl"
+#ifdef MICROFACET
+#include "rough_surface.glsl"
+#endif
 
 #define MAX_DEPTH 8                // --depth is at most this
 #define MIN_THROUGHPUT 1e-4        // branches carrying less light are not traced
@@ -98,8 +101,36 @@ struct Tree {
     // ray cone starts (traceClosest; the lengths of the segments between are
     // left out, and so are the curvatures that widen or narrow a cone)
     float coneStart;
+#ifdef MICROFACET
+    uint seed;  // chapter 15: the pixel's, for its branches' sample points
+#endif
 };
 Tree tree;
+
+#ifdef MICROFACET
+// [region branch_sample]
+// Chapter 15: each branch carries its path from the camera ray, a bit per
+// bounce (1: refracted), above its depth; with the depth it names the
+// branch, whose rough hit draws point `accumulated` of its own Sobol
+// sequence (sampling.glsl): frame after frame, each branch of the tree
+// goes on with its own low-discrepancy points, and the reference draws
+// the same.
+// The pixel's seed comes from a stream of its own (as chapter 04's jitter),
+// not from the frame an average began on: an average started again (the
+// view moved back) draws the same facets, and so does the reference.
+#define FACET_STREAM 0xFACE75EDu  // no frame number reaches it
+#define BRANCH_PATH_SHIFT 8u
+#define BRANCH_PATH_MASK 0x00FFFF00u
+uint childPath(uint path, uint refracted) {
+    return ((path << 1u) | (refracted << BRANCH_PATH_SHIFT)) & BRANCH_PATH_MASK;
+}
+vec2 branchSample(uint depth, uint path) {
+    return sobolPoint(push.accumulated, pcgHash(tree.seed ^ pcgHash(depth | path)));
+}
+// [end]
+#else
+uint childPath(uint path, uint refracted) { return 0u; }
+#endif
 
 void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
     // in air (chapter 13)
@@ -118,6 +149,12 @@ void growBranch() {
     // chapter 13: its light is one wavelength's
     uint spectral = b.depth & BRANCH_SPECTRAL;
     b.depth &= ~BRANCH_SPECTRAL;
+#ifdef MICROFACET
+    uint path = b.depth & BRANCH_PATH_MASK;  // chapter 15: which branch this is
+    b.depth &= ~BRANCH_PATH_MASK;
+#else
+    uint path = 0u;
+#endif
     // depth 0: a camera ray
     traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax,
                  b.depth == 0u ? 0.0 : tree.coneStart);
@@ -162,8 +199,9 @@ void growBranch() {
             vec3 o = secondaryOrigin(p, e, -n);
             float tMax = entering ? insideReach(o, p, radius) : kInfinity;
             if (tree.passes++ < MAX_PASSES)
-                tree.stack[tree.top++] = Branch(o, b.depth | spectral, b.direction, tMax,
-                                                throughput, boundary.beyond);
+                tree.stack[tree.top++] = Branch(o, b.depth | spectral | path,
+                                                b.direction, tMax, throughput,
+                                                boundary.beyond);
             return;
         }
         n1 = boundary.n1, n2 = boundary.n2, beyond = boundary.beyond;
@@ -185,6 +223,23 @@ void growBranch() {
 #endif
     // [end]
     Split s = splitBetween(m, n1, n2, ns, b.direction);
+#ifdef MICROFACET
+    // [region rough_branches]
+    // Chapter 15: a rough surface's two branches leave about one visible
+    // normal, with the shares of rough_surface.glsl; the lights' glints are
+    // its lobe's, and directLight below keeps the local part's light only.
+    float alpha = roughAlpha(m);
+    RoughSplit rough;
+    if (alpha > 0.0) {
+        rough = roughSplit(m, alpha, n1, n2, n, ns, b.direction,
+                           branchSample(b.depth, path));
+        tree.radiance += throughput * roughGlint(m, alpha, n1, n2, p, e, n, ns,
+                                                 -b.direction, tree.rays);
+        s.reflected = rough.reflectedShare, s.refracted = rough.refractedShare;
+        s.highlight = s.local;
+    }
+    // [end]
+#endif
 #ifdef PHOTON_MAP
     // [region caustic_light]
     // chapter 14: direct light in watts, and the caustic light of the
@@ -209,9 +264,12 @@ void growBranch() {
         // n2.
         vec3 t = thin ? b.direction : refractedDirection(b.direction, n, ns, s.eta),
              o = secondaryOrigin(p, e, -n);
+#ifdef MICROFACET
+        if (alpha > 0.0) t = rough.refracted;
+#endif
         // into the sphere
         float tMax = entering && !thin ? insideReach(o, p, radius) : kInfinity;
-        uint depth = (b.depth + 1u) | spectral;
+        uint depth = (b.depth + 1u) | spectral | childPath(path, 1u);
         if (t != vec3(0.0))
             tree.stack[tree.top++] = Branch(o, depth, t, tMax, tr, beyond);
         else rf += tr;  // only a mesh's flat triangle can reflect it all (sides above)
@@ -222,8 +280,11 @@ void growBranch() {
         // back into it
         float tMax = entering || thin ? kInfinity : insideReach(o, p, radius);
         vec3 r = reflectedDirection(b.direction, n, ns);
-        tree.stack[tree.top++] =
-            Branch(o, (b.depth + 1u) | spectral, r, tMax, rf, b.media);
+#ifdef MICROFACET
+        if (alpha > 0.0) r = rough.reflected;
+#endif
+        uint depth = (b.depth + 1u) | spectral | childPath(path, 0u);
+        tree.stack[tree.top++] = Branch(o, depth, r, tMax, rf, b.media);
     }
 }
 

@@ -184,6 +184,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .wavelength = settings.wavelength,
                 .exposure = std::exp2(settings.exposure),
                 .antialias = jitter,
+                .facetSampling = uint32_t(settings.facetSampling),
             };
             if (pass.record)
                 pass.record(cmd, push, {push.accumulated, viewer.viewOnlyChanged()});

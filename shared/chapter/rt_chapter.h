@@ -17,6 +17,7 @@ struct RtChapterSettings {
     int maxDepth = 1;
     int samplesPerHit = 1;
     int pattern = 0;
+    int facetSampling = 0;  // chapter 15's --sampling: FACETS_VISIBLE, FACETS_CONE
     int fresnelMode = 0;
     // > 0: a fixed offset for secondary rays (chapter 06's experiment)
     float epsilon = 0;

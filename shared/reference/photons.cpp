@@ -1,6 +1,7 @@
 #include "reference/photons.h"
 
 #include "reference/ray_tree.h"
+#include "reference/sampling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -127,8 +128,12 @@ ReferencePhotons::ReferencePhotons(const ReferenceRenderer& renderer,
                                     light.intensity / density(light.position, direction);
                                 origin = light.position;
                             }
+                            // its own facets at rough hits (chapter 15)
+                            uint32_t key = shader::pcgHash(uint32_t(j * side + i) ^
+                                                           shader::pcgHash(uint32_t(
+                                                               &t - targets.data())));
                             part.trace(settings, origin, direction, power, MediumStack{},
-                                       false, 0, 0);
+                                       false, 0, 0, key);
                         }
                     std::lock_guard<std::mutex> guard(lock);
                     photons_.insert(photons_.end(), part.photons_.begin(),
@@ -163,7 +168,7 @@ int64_t ReferencePhotons::key(const glm::ivec3& c) const {
 void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origin,
                              glm::dvec3 direction, glm::dvec3 power,
                              const MediumStack& media, bool specular, int bounces,
-                             int passes) {
+                             int passes, uint32_t key) {
     if (std::max({std::abs(power.r), std::abs(power.g), std::abs(power.b)}) < 1e-14)
         return;
     const Scene& scene = renderer_.scene();
@@ -187,7 +192,7 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
         if (!c.real) {  // no surface: on into the new media
             if (passes < kMaxPasses)
                 trace(settings, renderer_.secondaryOrigin(p, hit.error, -n), direction,
-                      power, c.beyond, specular, bounces, passes + 1);
+                      power, c.beyond, specular, bounces, passes + 1, key);
             return;
         }
         n1 = mediumIor(scene, c.from), n2 = mediumIor(scene, c.to), beyond = c.beyond;
@@ -197,7 +202,7 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
                 if (settings.wavelength >= kMinNm) {
                     at.wavelength = settings.wavelength;
                     trace(settings, origin, direction, sent, at, specular, bounces,
-                          passes);
+                          passes, key);
                     return;
                 }
                 for (int k = 0; k < kWavelengths; ++k) {
@@ -205,7 +210,8 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
                     trace(settings, origin, direction,
                           sent * referenceSpectralWeight(at.wavelength) /
                               double(kWavelengths),
-                          at, specular, bounces, passes);
+                          at, specular, bounces, passes,
+                          shader::pcgHash(key + uint32_t(k)));
                 }
                 return;
             }
@@ -220,19 +226,37 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
     if (specular && split.local > 0 && std::max({m.kd.r, m.kd.g, m.kd.b}) > 0)
         photons_.push_back({p, n, power});
     if (bounces >= kPhotonBounces) return;
-    double reflected = split.reflected;
-    if (split.refracted > 0) {
+    double reflected = split.reflected, refracted = split.refracted;
+    // Chapter 15: at a rough surface both branches leave about one facet,
+    // drawn from the photon's own hash (the grid's many photons average
+    // the facets; the GPU's photons draw theirs by chance).
+    double alpha = settings.stage >= ReferenceStage::Frosted && !thin
+                       ? m.roughness * m.roughness
+                       : 0.0;
+    RoughBranches rough;
+    if (alpha > 0) {
+        uint32_t a = shader::pcgHash(key), b = shader::pcgHash(a);
+        rough = roughBranches(settings, m, alpha, split.n1, split.n2, n, ns, direction,
+                              glm::dvec2(shader::toUnit(a), shader::toUnit(b)));
+        reflected = rough.reflectedShare, refracted = rough.refractedShare;
+    }
+    if (refracted > 0) {
         glm::dvec3 t = direction;  // a thin wall's: unbent
-        if (thin || refractSides(direction, n, ns, split.n1, split.n2, t))
+        bool crosses = true;
+        if (alpha > 0) t = rough.refracted;
+        else crosses = thin || refractSides(direction, n, ns, split.n1, split.n2, t);
+        if (crosses)
             trace(settings, renderer_.secondaryOrigin(p, hit.error, -n), t,
-                  power * split.refracted, beyond, true, bounces + 1, passes);
+                  power * refracted, beyond, true, bounces + 1, passes,
+                  shader::pcgHash(key ^ 0x5bd1e995u));
         else
-            reflected += split.refracted;
+            reflected += refracted;
     }
     if (reflected > 0)
         trace(settings, renderer_.secondaryOrigin(p, hit.error, n),
-              reflectSides(direction, n, ns), power * reflected, media, true, bounces + 1,
-              passes);
+              alpha > 0 ? rough.reflected : reflectSides(direction, n, ns),
+              power * reflected, media, true, bounces + 1, passes,
+              shader::pcgHash(key ^ 0x27d4eb2fu));
 }
 // [end]
 

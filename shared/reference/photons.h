@@ -6,7 +6,8 @@
 // Russian roulette, this one follows every branch with its Fresnel share,
 // and a dispersive surface splits it into 32 wavelengths. Photons are stored
 // on diffuse surfaces after a mirror or glass (written from
-// docs/14_caustics.md, not from photon.rgen).
+// docs/14_caustics.md, not from photon_trace.glsl). Chapter 15: at a rough
+// surface both branches leave about one facet drawn from the photon's key.
 #pragma once
 #include "reference/reference.h"
 
@@ -34,7 +35,7 @@ private:
     };
     void trace(const ReferenceSettings& settings, glm::dvec3 origin, glm::dvec3 direction,
                glm::dvec3 power, const MediumStack& media, bool specular, int bounces,
-               int passes);
+               int passes, uint32_t key);
     int64_t key(const glm::ivec3& cell) const;
 
     const ReferenceRenderer& renderer_;

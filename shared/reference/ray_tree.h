@@ -53,6 +53,32 @@ glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n);
 glm::dvec3 reflectSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns);
 bool refractSides(const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& ns,
                   double n1, double n2, glm::dvec3& t);
+// Chapter 15 (microfacet.cpp): a rough surface's two branches about one
+// visible normal, drawn with the GPU's sample point u of the branch.
+struct RoughBranches {
+    glm::dvec3 reflected{0}, refracted{0};
+    double reflectedShare = 0, refractedShare = 0;
+};
+RoughBranches roughBranches(const ReferenceSettings& settings, const Material& m,
+                            double alpha, double n1, double n2, const glm::dvec3& n,
+                            const glm::dvec3& ns, const glm::dvec3& direction,
+                            glm::dvec2 u);
+// The microfacet lobe toward a light in direction l (BSDF times |cos|), v
+// toward the viewer; l behind the surface: the transmission.
+double roughLobe(const ReferenceSettings& settings, const Material& m, double alpha,
+                 double n1, double n2, const glm::dvec3& ns, const glm::dvec3& v,
+                 const glm::dvec3& l);
+// Branch `path` at `depth`'s sample point in frame `accumulated` of the
+// pixel's average (seed: the pixel's, ray_tree.glsl's branchSample).
+glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
+                        uint32_t path);
+constexpr uint32_t kBranchPathShift = 8, kBranchPathMask = 0x00FFFF00u;
+// the stream of the pixel's seed for its facets (FACET_STREAM)
+constexpr uint32_t kFacetStream = 0xFACE75EDu;
+inline uint32_t childPath(uint32_t path, uint32_t refracted) {
+    return ((path << 1) | (refracted << kBranchPathShift)) & kBranchPathMask;
+}
+
 // The normals of a hit facing the ray.
 void facingNormals(const ReferenceHit& hit, const glm::dvec3& direction, glm::dvec3& n,
                    glm::dvec3& ns);

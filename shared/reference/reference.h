@@ -26,7 +26,8 @@ enum class ReferenceStage {
     Refraction = 10,
     Rough = 11,
     Media = 13,
-    Caustics = 14  // chapter 13's media, lights in watts, and a photon map
+    Caustics = 14,  // chapter 13's media, lights in watts, and a photon map
+    Frosted = 15    // and rough surfaces as microfacets
 };  // chapter 12 renders Rough on meshes
 
 // Chapter 13: the media a ray is inside, the last entered at the back
@@ -37,6 +38,14 @@ struct MediumStack {
     // The pixel's wavelengths, one per accumulated frame as the GPU draws
     // them: where the path first meets dispersion, its light is their mean.
     const std::vector<double>* wavelengths = nullptr;
+};
+
+// Chapter 15: which branch of which pixel's tree in which frame a ray is,
+// for its rough hit's sample point (ray_tree.glsl's branchSample).
+struct BranchId {
+    uint32_t seed = 0;         // the pixel's (its stream kFacetStream)
+    uint32_t accumulated = 0;  // the frame's index in the average
+    uint32_t path = 0;         // a bit per bounce from the camera ray, above bit 8
 };
 
 // Chapter 13: the wavelength (nm) of pixel (x, y)'s paths in frame k of an
@@ -160,7 +169,8 @@ public:
     glm::dvec3 radiance(const ReferenceSettings& settings, const glm::dvec3& origin,
                         const glm::dvec3& direction, int depth,
                         const glm::dvec3& throughput, const MediumStack& media,
-                        int& passes, const RayCone& cone = {}) const;
+                        int& passes, const RayCone& cone = {},
+                        const BranchId& branch = {}) const;
     // n: the geometric normal (shadow rays leave along it); ns: the shading
     // normal. Ambient and diffuse light are weighted by `local`, the
     // highlight by `highlight` (a dielectric's share F of it, chapter 09 on).
@@ -189,6 +199,12 @@ public:
                            const glm::dvec3& p, double error,
                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v,
                            double local, double highlight) const;
+    // Chapter 15: the lights' glints on a rough surface of roughness^2 alpha
+    // between indices n1 and n2 (ray_tree.h's roughLobe toward each light).
+    glm::dvec3 roughGlints(const ReferenceSettings& settings, const Material& m,
+                           double alpha, double n1, double n2, const glm::dvec3& p,
+                           double error, const glm::dvec3& n, const glm::dvec3& ns,
+                           const glm::dvec3& v) const;
     // True when nothing lies between `from` and the sun, in direction l.
     bool sunVisible(const glm::dvec3& from, const glm::dvec3& l) const;
     // --caustics transmit: what passes from `from` along unit l up to tMax,

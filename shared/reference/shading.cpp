@@ -92,6 +92,32 @@ glm::dvec3 ReferenceRenderer::directLight(const ReferenceSettings& settings,
 }
 // [end]
 
+// Chapter 15: the lights' glints on a rough surface, the microfacet lobe
+// toward each (reflection on the viewer's side, transmission behind, its
+// shadow ray from the far side).
+glm::dvec3 ReferenceRenderer::roughGlints(const ReferenceSettings& settings,
+                                          const Material& m, double alpha, double n1,
+                                          double n2, const glm::dvec3& p, double error,
+                                          const glm::dvec3& n, const glm::dvec3& ns,
+                                          const glm::dvec3& v) const {
+    glm::dvec3 color(0);
+    for (const PointLight& light : scene_.lights) {
+        bool sun = light.kind == PointLight::Kind::Directional;
+        glm::dvec3 toLight = light.position - p;
+        glm::dvec3 l = sun ? -light.direction : glm::normalize(toLight);
+        bool behind = glm::dot(l, n) < 0;
+        if (behind != (glm::dot(l, ns) < 0)) continue;  // between the two normals
+        glm::dvec3 E =
+            sun ? light.irradiance : light.intensity / glm::dot(toLight, toLight);
+        glm::dvec3 added = roughLobe(settings, m, alpha, n1, n2, ns, v, l) * E;
+        if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
+        glm::dvec3 from = secondaryOrigin(p, error, behind ? -n : n);
+        bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
+        if (visible) color += added;
+    }
+    return color;
+}
+
 glm::dvec3 ReferenceRenderer::transmittedLight(const ReferenceSettings& settings,
                                                glm::dvec3 from, const glm::dvec3& l,
                                                double tMax) const {
@@ -144,7 +170,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                                        const glm::dvec3& direction, int depth,
                                        const glm::dvec3& throughput,
                                        const MediumStack& media, int& passes,
-                                       const RayCone& cone) const {
+                                       const RayCone& cone,
+                                       const BranchId& branch) const {
     // depth 0: a camera ray
     ReferenceHit hit = trace(origin, direction, depth == 0 ? eyeTmin() : 0.0, 1e300);
     textureAt(hit, direction, cone);
@@ -185,7 +212,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         if (!crossing.real) {  // no surface here
             if (passes++ >= kMaxPasses) return glm::dvec3(0);
             return kept * radiance(settings, secondaryOrigin(p, hit.error, -n), direction,
-                                   depth, arriving, beyond, passes, cone);
+                                   depth, arriving, beyond, passes, cone, branch);
         }
         if (crossing.dispersive) {
             if (media.wavelength == 0) {
@@ -196,7 +223,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                     at.wavelength =
                         settings.wavelength >= kMinNm ? settings.wavelength : 587.5618;
                     return radiance(settings, origin, direction, depth, throughput, at,
-                                    passes, cone);
+                                    passes, cone, branch);
                 }
                 glm::dvec3 sum(0);
                 for (double nm : *media.wavelengths) {
@@ -204,7 +231,7 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                     glm::dvec3 w = referenceSpectralWeight(nm);
                     int passesAt = passes;
                     sum += w * radiance(settings, origin, direction, depth,
-                                        throughput * w, at, passesAt, cone);
+                                        throughput * w, at, passesAt, cone, branch);
                 }
                 return sum / double(media.wavelengths->size());
             }
@@ -217,7 +244,22 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
     Split split = splitAt(settings, m, n1, n2, glm::dot(ns, v));
     double reflected = split.reflected, refracted = split.refracted;
     glm::dvec3 color(0);
-    if (settings.stage == ReferenceStage::Caustics) {
+    // Chapter 15: a rough surface's branches leave about one visible normal,
+    // drawn at the GPU's sample point of this branch; its glints are the lobe's.
+    double alpha = settings.stage >= ReferenceStage::Frosted && !thin
+                       ? m.roughness * m.roughness
+                       : 0.0;
+    RoughBranches rough;
+    if (alpha > 0) {
+        rough = roughBranches(
+            settings, m, alpha, split.n1, split.n2, n, ns, direction,
+            branchSample(branch.seed, branch.accumulated, uint32_t(depth), branch.path));
+        reflected = rough.reflectedShare, refracted = rough.refractedShare;
+        color +=
+            roughGlints(settings, m, alpha, split.n1, split.n2, p, hit.error, n, ns, v);
+        split.highlight = split.local;
+    }
+    if (settings.stage >= ReferenceStage::Caustics) {
         // chapter 14: direct light in watts, and the photons' caustic light
         if (split.highlight > 0)
             color += directLight(settings, m, p, hit.error, n, ns, v, split.local,
@@ -238,20 +280,25 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
                std::max({t.r, t.g, t.b}) >= kMinThroughput;
     };
     glm::dvec3 t = direction;  // a thin wall's: unbent
+    BranchId through = branch, back = branch;  // the children (chapter 15)
+    through.path = childPath(branch.path, 1), back.path = childPath(branch.path, 0);
     if (refracted > 0 && strongEnough(refracted)) {
-        if (thin || refractSides(direction, n, ns, split.n1, split.n2, t))
+        bool crosses = true;
+        if (alpha > 0) t = rough.refracted;
+        else crosses = thin || refractSides(direction, n, ns, split.n1, split.n2, t);
+        if (crosses)
             color +=
                 refracted * radiance(settings, secondaryOrigin(p, hit.error, -n), t,
                                      depth + 1, arriving * refracted, beyond, passes,
-                                     deeper);
+                                     deeper, through);
         else
             reflected += refracted;  // a mesh's flat triangle reflects it all
     }
     if (reflected > 0 && strongEnough(reflected)) {
-        glm::dvec3 r = reflectSides(direction, n, ns);
+        glm::dvec3 r = alpha > 0 ? rough.reflected : reflectSides(direction, n, ns);
         color += reflected * radiance(settings, secondaryOrigin(p, hit.error, n), r,
                                       depth + 1, arriving * reflected, media, passes,
-                                      deeper);
+                                      deeper, back);
     }
     return kept * color;
 }
@@ -288,6 +335,30 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
     if (stdError) *stdError = 0;
     const RayCone camera{pixelSpread(height), 0};  // chapter 12's ray cones
     // chapter 13: the eye may be inside a medium
+    if (settings.stage >= ReferenceStage::Frosted) {
+        // Chapter 15: every frame's tree has its own rough branches: the mean
+        // of the frames' trees, each with its frame's wavelength (one frame's:
+        // that frame's).
+        MediumStack eye;
+        if (scene_.cameraMedium >= 0)
+            eye.materials.push_back(uint32_t(scene_.cameraMedium));
+        glm::dvec3 sum(0);
+        uint32_t frames = std::max(1u, settings.frames), count = 0;
+        for (uint32_t k = 0; k < frames; ++k) {
+            if (frame >= 0 && int(k) != frame) continue;
+            std::vector<double> wavelengths{
+                referencePathWavelength(x, y, settings.firstFrame, k)};
+            eye.wavelengths = &wavelengths;
+            BranchId branch{
+                .seed = shader::pixelSeed(shader::uvec2(x, y), kFacetStream),
+                .accumulated = k};
+            int passes = 0;
+            sum += radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
+                            camera, branch);
+            ++count;
+        }
+        return sum / double(count);
+    }
     if (settings.stage >= ReferenceStage::Media) {
         MediumStack eye;
         if (scene_.cameraMedium >= 0)
@@ -377,7 +448,7 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
                                      uint32_t height) const {
     FloatImage image{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
     // chapter 14: the photons first, once
-    if (settings.stage == ReferenceStage::Caustics && !settings.photonRadii.empty() &&
+    if (settings.stage >= ReferenceStage::Caustics && !settings.photonRadii.empty() &&
         !photons_)
         photons_ = std::make_shared<ReferencePhotons>(*this, settings);
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());

@@ -102,7 +102,7 @@ void requirePhysicalLights(const Scene& scene) {
     for (size_t i = 0; i < scene.lights.size(); ++i)
         if (scene.lights[i].kind == PointLight::Kind::Thesis)
             throw InputError(scene.path + ": lights[" + std::to_string(i) +
-                             "]: chapter 14 needs lights in physical units: a point "
+                             "]: chapters 14-15 need lights in physical units: a point "
                              "light's \"power\" in watts, or a directional light");
 }
 

@@ -1,0 +1,145 @@
+// Chapter 15: microfacet.glsl's model where the ray tree (ray_tree.glsl)
+// and the photons (photon_trace.glsl) meet a rough surface: one visible
+// normal drawn per branch, the reflected and refracted directions about it
+// with their shares, and the glints of the lights.
+#ifndef ROUGH_SURFACE_GLSL
+#define ROUGH_SURFACE_GLSL
+#include "fresnel.glsl"
+#include "microfacet.glsl"
+
+// glTF's convention (and PBRT's RoughnessToAlpha): alpha = roughness^2, so
+// that roughness looks even from 0 to 1. Thin walls stay smooth.
+float roughAlpha(GpuMaterial m) {
+    bool thin = kThinWalls && (m.flags & MATERIAL_THIN) != 0u;
+    return thin ? 0.0 : m.extra.y * m.extra.y;
+}
+
+// [region rough_split]
+// The frame of the facing shading normal ns: z = ns (Duff et al. 2017).
+void roughFrame(vec3 ns, out vec3 t, out vec3 b) {
+    float s = ns.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + ns.z), c = ns.x * ns.y * a;
+    t = vec3(1.0 + s * ns.x * ns.x * a, s * c, -s * ns.x);
+    b = vec3(c, s + ns.y * ns.y * a, -ns.y);
+}
+
+struct RoughSplit {
+    vec3 reflected, refracted;  // world directions
+    float reflectedShare, refractedShare;
+};
+
+// Where a ray going `direction` meets a rough surface (facing normals n,
+// ns) between indices n1 and n2: the material's dielectric part
+// (transmission) divides by Fresnel at the microfacet, its mirror part
+// (reflectivity) reflects about the same microfacet; u: the sample point.
+RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
+                     vec3 direction, vec2 u);
+RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
+                      vec3 direction, vec2 u) {
+    if (push.facetSampling == FACETS_CONE)  // the comparison below
+        return coneSplit(m, alpha, n1, n2, n, ns, direction, u);
+    vec3 t, b;
+    roughFrame(ns, t, b);
+    vec3 wo = normalize(
+        vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
+    vec3 facet = sampleVisibleNormal(wo, alpha, u);
+    MicrofacetSplit s =
+        microfacetSplit(wo, facet, alpha, n1, n2, push.fresnelMode, m.extra.x);
+    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
+    RoughSplit r;
+    r.reflected = s.reflected.x * t + s.reflected.y * b + s.reflected.z * ns;
+    r.refracted = s.refracted.x * t + s.refracted.y * b + s.refracted.z * ns;
+    // the mirror part: no Fresnel, the same masking (G2 / G1)
+    float masking = s.reflected.z > 0.0 ? smithG2(wo, s.reflected, alpha) /
+                                              smithG1(wo, alpha)
+                                        : 0.0;
+    r.reflectedShare = transmission * s.reflectedShare + mirror * masking;
+    r.refractedShare = transmission * s.refractedShare;
+    // a mesh's flat triangle (n) decides the sides, as ray_tree.glsl's sides
+    if (dot(r.reflected, n) <= 0.0) r.reflectedShare = 0.0;
+    if (dot(r.refracted, n) >= 0.0) r.refractedShare = 0.0;
+    return r;
+}
+// [end]
+
+// [region cone_split]
+// --sampling cone, for the comparison on page 15: chapter 11's sampler for
+// the same model. Each branch's direction is uniform in the cone of
+// half-angle roughness x 90 degrees about the smooth surface's mirror or
+// refracted direction, and carries the BSDF times cos over the cone's
+// density: the same light on average where the lobe lies inside the cone,
+// with weights that are not bounded (and nothing from outside the cone).
+float coneShare(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi,
+                float cosMax) {
+    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
+    float f = transmission *
+              dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
+    if (wi.z > 0.0 && mirror > 0.0)
+        f += mirror * ggxD(normalize(wo + wi), alpha) * smithG2(wo, wi, alpha) /
+             (4.0 * wo.z);
+    return f * 2.0 * kPi * (1.0 - cosMax);
+}
+RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
+                     vec3 direction, vec2 u) {
+    vec3 t, b;
+    roughFrame(ns, t, b);
+    vec3 wo = normalize(
+        vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
+    float roughness = sqrt(alpha), cosMax = cos(roughness * 0.5 * kPi);
+    RoughSplit r;
+    r.reflected = lobeDirection(reflect(direction, ns), roughness, u);
+    vec3 through = refract(direction, ns, n1 / n2);
+    r.refracted = through == vec3(0.0) ? through : lobeDirection(through, roughness, u);
+    vec3 wr = vec3(dot(r.reflected, t), dot(r.reflected, b), dot(r.reflected, ns));
+    vec3 wt = vec3(dot(r.refracted, t), dot(r.refracted, b), dot(r.refracted, ns));
+    r.reflectedShare = wr.z > 0.0 ? coneShare(m, alpha, n1, n2, wo, wr, cosMax) : 0.0;
+    r.refractedShare = through != vec3(0.0) && wt.z < 0.0
+                           ? coneShare(m, alpha, n1, n2, wo, wt, cosMax)
+                           : 0.0;
+    if (dot(r.reflected, n) <= 0.0) r.reflectedShare = 0.0;
+    if (dot(r.refracted, n) >= 0.0) r.refractedShare = 0.0;
+    return r;
+}
+// [end]
+
+// [region rough_glint]
+// The lights' glints on a rough surface, seen from v: the microfacet
+// lobe evaluated toward each light (it cannot be sampled: a point light or
+// the sun is hit by no ray). On the viewer's side the reflection,
+// F D G2 / (4 cos_o), of the dielectric and the mirror parts; behind the
+// surface the transmission (a frosted pane glows where the sun is behind
+// it), its shadow ray leaving from the far side.
+vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float error,
+                vec3 n, vec3 ns, vec3 v, inout uint rays) {
+    vec3 t, b;
+    roughFrame(ns, t, b);
+    vec3 wo = vec3(dot(v, t), dot(v, b), max(dot(v, ns), 1e-6));
+    wo = normalize(wo);
+    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < camera.counts.z; ++i) {
+        bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
+        vec3 toLight = lights[i].position.xyz - p;
+        vec3 l = sun ? -lights[i].position.xyz : safeNormalize(toLight);
+        vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
+        bool behind = dot(l, n) < 0.0;
+        if (behind != (wi.z < 0.0)) continue;  // between the two normals: neither side
+        float f = transmission *
+                  dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
+        if (!behind && mirror > 0.0) {
+            vec3 h = normalize(wo + wi);
+            f += mirror * ggxD(h, alpha) * smithG2(wo, wi, alpha) / (4.0 * wo.z);
+        }
+        vec3 irradiance = sun ? lights[i].intensity.rgb
+                              : lights[i].intensity.rgb / dot(toLight, toLight);
+        vec3 light = f * irradiance;
+        if (max(light.r, max(light.g, light.b)) < MIN_LIGHT) continue;
+        ++rays;
+        vec3 origin = secondaryOrigin(p, error, behind ? -n : n);
+        if (sun ? sunVisible(origin, l) : lightVisible(origin, lights[i].position.xyz))
+            sum += light;
+    }
+    return sum;
+}
+// [end]
+#endif

@@ -1,0 +1,172 @@
+// Chapter 14's photon pass (photon_pass.h).
+#include "photons/photon_pass.h"
+
+#include "app/app.h"
+#include "core/params.h"
+#include "photons/photon_map.h"
+#include "raytracing/rt_scene.h"
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+namespace rg {
+
+namespace {
+
+// [region options]
+// The photon pass's parameters: command-line options and overlay controls.
+void declarePhotonOptions(Params& params, PhotonSettings& photons) {
+    params
+        .choice("--caustics", photons.caustics,
+                "Light through glass: none (black shadows, as chapter 13), photons, or "
+                "shadow rays that pass glass unbent (transmit)",
+                {"off", "photons", "transmit"})
+        .live = false;  // transmit's shaders are chosen when the pipeline is made
+    params
+        .integer("--photons", photons.photons,
+                 "Photons traced from the lights each frame", 1000, 4000000)
+        .live = false;  // the map's buffers are sized for them
+    params.number("--radius", photons.radius,
+                  "First frame's gathering radius (0: the largest glass's bounding "
+                  "radius / 20)",
+                  0, 1e6);
+    params.number("--alpha", photons.alpha,
+                  "How slowly the radius shrinks (Knaus-Zwicker; 1: fixed)", 0.05, 1);
+    params
+        .integer("--reference-photons", photons.referenceGrid,
+                 "The CPU reference's photons from each light and glass: a grid this "
+                 "many a side, each split at every surface",
+                 16, 4000)
+        .live = false;
+    params
+        .integer("--photon-seed", photons.seed,
+                 "Draw another set of photons (an independent estimate)", 0, 1000000)
+        .live = false;
+    params
+        .text("--photons-ply", photons.ply,
+              "Write the last frame's photons to this PLY point cloud")
+        .live = false;
+}
+// [end]
+
+// [region transmit_shaders]
+// --caustics transmit: the shadow hit groups get any-hit shaders that pass
+// glass (transmit.glsl), and the shadow rays their own miss shader.
+void adaptShaders(const PhotonSettings& photons, RtShaders& shaders) {
+    if (photons.caustics != PhotonSettings::kTransmit) return;
+    shaders.miss.push_back("14_caustics/transmit.rmiss");  // MISS_TRANSMIT
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_QUAD).anyHit =
+        "14_caustics/transmit_triangle.rahit";
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_MESH).anyHit =
+        "14_caustics/transmit_triangle.rahit";
+    shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_SPHERE).anyHit =
+        "14_caustics/transmit_sphere.rahit";
+}
+// [end]
+
+// [region pass]
+// The photon pass, made once the scene is on the GPU: each frame records
+// the photon map before the camera rays (rt_chapter.cpp).
+FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
+                     const std::string& photonShader) {
+    if (photons.radius <= 0) {  // a twentieth of the largest glass
+        float largest = 0;
+        for (const gpu::PhotonEmitter& e : photonEmitters(c.scene))
+            largest = std::max(largest, e.target.w);
+        photons.radius = largest > 0 ? largest / 20 : 0.05f;
+    }
+    FramePass pass;
+    if (photons.caustics != PhotonSettings::kPhotons) {  // no photon map
+        pass.record = [&photons](VkCommandBuffer, gpu::RtPush& push, FrameChange) {
+            push.caustics = photons.caustics == PhotonSettings::kTransmit
+                                ? CAUSTICS_TRANSMIT
+                                : CAUSTICS_OFF;
+        };
+        pass.reference = [&photons](ReferenceSettings& r) {
+            r.transmitShadows = photons.caustics == PhotonSettings::kTransmit;
+        };
+        return pass;
+    }
+    auto map = std::make_shared<PhotonMap>(createPhotonMap(c, photons, photonShader));
+    const RtScene& rt = c.rt;
+    App& app = c.app;
+    const Scene& scene = c.scene;
+    pass.record = [map, &rt, &photons](VkCommandBuffer cmd, gpu::RtPush& push,
+                             FrameChange change) {
+        push.caustics = CAUSTICS_PHOTONS;
+        push.photonSeed = uint32_t(photons.seed);
+        photons.lastRadius = frameRadius(photons, change.accumulated);
+        // The map does not depend on the camera: while only the view moves
+        // (every such frame starts a new average, at the first radius), the
+        // map of the first radius is kept, and a light, material or
+        // parameter changed traces it again.
+        photons.kept = change.viewOnly && map->radius == photons.lastRadius;
+        if (photons.kept) {
+            push.photonMap = {uint32_t(map->header.address),
+                              uint32_t(map->header.address >> 32)};
+            push.photonRadius = map->radius;
+            push.photonsEmitted = uint32_t(photons.photons);
+            return;
+        }
+        recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),
+                        photons.lastRadius);
+        map->radius = photons.lastRadius;
+        ++map->traced;
+    };
+    pass.finish = [map, &app, &scene, &photons] {
+        LastPhotons last = readPhotons(app.gpu, app.deletion, *map, !photons.ply.empty());
+        if (!photons.ply.empty()) writePhotonsPly(photons.ply, last.stored, scene.origin);
+        // the last frame's photons: stored (a caustic), escaped, stopped by a limit
+        return nlohmann::json{{"photons",
+                               {{"emitted_per_frame", photons.photons},
+                                {"stored_last_frame", last.header.stored},
+                                {"escaped_last_frame", last.header.escaped},
+                                {"lost_last_frame", last.header.lost},
+                                {"maps_traced", map->traced},
+                                {"emitters", map->emitterCount},
+                                {"grid_cells", map->cellCount},
+                                {"first_radius", photons.radius},
+                                {"last_radius", photons.lastRadius},
+                                {"alpha", photons.alpha}}}};
+    };
+    // the window's overlay: how fast photons go, and the radius now
+    pass.overlay = [&photons](double gpuMs) {
+        char line[96];
+        if (photons.kept) return std::string("photon map kept while the view moves");
+        std::snprintf(line, sizeof line, "%.2f M photons/s, radius %.4g",
+                      gpuMs > 0 ? photons.photons / (gpuMs * 1e3) : 0.0,
+                      double(photons.lastRadius));
+        return std::string(line);
+    };
+    // the reference averages its estimates over the same frames' radii
+    pass.reference = [&photons](ReferenceSettings& r) {
+        r.photonGrid = photons.referenceGrid;
+        for (uint32_t i = 0; i < r.frames; ++i)
+            r.photonRadii.push_back(frameRadius(photons, i));
+    };
+    return pass;
+}
+// [end]
+
+}  // namespace
+
+PhotonChapter photonChapter(const std::string& photonShader) {
+    // one set of settings for the run, which the options fill and the pass reads
+    auto photons = std::make_shared<PhotonSettings>();
+    return {
+        .options = [photons](Params& params, RtChapterSettings&) {
+            declarePhotonOptions(params, *photons);
+        },
+        .adaptShaders = [photons](RtShaders& shaders, const Scene&) {
+            adaptShaders(*photons, shaders);
+        },
+        .framePass =
+            [photons, photonShader](const FramePassContext& c) {
+                return photonPass(c, *photons, photonShader);
+            },
+    };
+}
+
+}  // namespace rg

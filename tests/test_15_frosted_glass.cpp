@@ -1,0 +1,165 @@
+// Chapter 15, frosted glass, checked where physics or geometry decides
+// (the sampling against the evaluation of the model is test_microfacet):
+// - the white furnace: a rough glass ball and a rough mirror in a uniform
+//   white sky never add light, lose it as single scattering does (the
+//   measured loss is printed), and a smooth ball is invisible;
+// - the smooth limit: roughness 1e-4 renders as chapter 14's smooth glass;
+// - against the CPU reference, which draws the same facets (the camera's
+//   ray trees; photons are random on the GPU);
+// - what the page says the default scene shows: the frosted balls spread
+//   the sun's caustic that the clear ball focuses.
+#include "harness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "core/display.h"
+#include "core/image.h"
+
+namespace {
+
+std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
+    std::string path = dir + "/" + name + "_scene.json";
+    std::ofstream(path) << scene.dump(1);
+    return path;
+}
+
+rg::FloatImage render(const char* exe, const std::string& scene, const std::string& stem, int width, int height,
+                      std::vector<std::string> extra) {
+    std::vector<std::string> args = {"--headless", "--validation", "--width", std::to_string(width),
+                                     "--height", std::to_string(height), "--output", stem + ".png"};
+    if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
+    args.insert(args.end(), extra.begin(), extra.end());
+    rgtest::RunResult r = rgtest::run(exe, args);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return rg::readPfm(stem + ".pfm");
+}
+
+double channel(const rg::FloatImage& image, int x, int y, int c) {
+    return image.rgba[(size_t(y) * image.width + x) * 4 + c];
+}
+
+// [region furnace]
+// A ball of radius 1 filling most of a 64x64 picture in a sky of radiance 1
+// everywhere, no light, no floor. Whatever the ball does to rays, a
+// material that loses no energy shows 1 in every pixel: the ball vanishes.
+struct Furnace {
+    double mean = 0, lowest = 1e9, highest = 0;  // over the ball's pixels
+};
+Furnace furnace(const std::string& dir, const std::string& name, const nlohmann::json& material, int frames) {
+    nlohmann::json scene = {
+        {"camera", {{"position", {0, 0, 3.2}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 40}}},
+        {"sky", {{"top", {1, 1, 1}}, {"horizon", {1, 1, 1}}, {"bottom", {1, 1, 1}}}},
+        {"lights", nlohmann::json::array()},
+        {"materials", {{"ball", material}}},
+        {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}, {"material", "ball"}}}}};
+    const int size = 64;
+    rg::FloatImage image = render(RG_EXE_15, writeScene(dir, name, scene), dir + "/" + name, size, size,
+                                  {"--frames", std::to_string(frames), "--caustics", "off", "--depth", "8"});
+    Furnace f;
+    int n = 0;
+    // the ball spans about 0.64 of the picture's height: its inner disc
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double dx = x + 0.5 - size / 2.0, dy = y + 0.5 - size / 2.0;
+            if (dx * dx + dy * dy > 0.25 * 0.25 * size * size) continue;
+            double v = (channel(image, x, y, 0) + channel(image, x, y, 1) + channel(image, x, y, 2)) / 3;
+            f.mean += v, f.lowest = std::min(f.lowest, v), f.highest = std::max(f.highest, v);
+            ++n;
+        }
+    f.mean /= std::max(n, 1);
+    return f;
+}
+
+TEST(Chapter15, WhiteFurnaceNeverGainsAndLosesWithRoughness) {
+    std::string dir = rgtest::outputDir("15_furnace");
+    nlohmann::json glass = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1.5}};
+    Furnace smooth = furnace(dir, "smooth", glass, 1);
+    EXPECT_NEAR(smooth.mean, 1.0, 0.01) << "a smooth clear ball in the furnace (depth 8 loses a little)";
+    std::printf("white furnace, rough glass ball (n = 1.5), mean over its disc (min, max):\n");
+    double last = smooth.mean;
+    for (double roughness : {0.1, 0.3, 0.6, 1.0}) {
+        nlohmann::json rough = glass;
+        rough["roughness"] = roughness;
+        char name[32];
+        std::snprintf(name, sizeof name, "glass_%.1f", roughness);
+        Furnace f = furnace(dir, name, rough, 16);
+        std::printf("  roughness %.1f: %.4f (%.4f, %.4f): %.1f %% lost\n", roughness, f.mean, f.lowest,
+                    f.highest, 100 * (1 - f.mean));
+        // a pixel's 16 frames are noisy: the mean may not gain, a pixel within its noise
+        EXPECT_LE(f.mean, 1.0 + 1e-3) << "roughness " << roughness << " adds light";
+        EXPECT_LE(f.mean, last + 0.005) << "the loss grows with roughness";
+        last = f.mean;
+    }
+    EXPECT_LT(last, 0.97) << "single scattering at roughness 1 loses several per cent";
+    nlohmann::json mirror = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"reflectivity", 1}, {"roughness", 0.6}};
+    Furnace m = furnace(dir, "mirror", mirror, 16);
+    std::printf("  rough mirror (roughness 0.6): %.4f: %.1f %% lost\n", m.mean, 100 * (1 - m.mean));
+    EXPECT_LE(m.mean, 1.0 + 1e-3);
+    EXPECT_GT(m.mean, 0.8);
+}
+// [end]
+
+// Roughness 1e-4 (alpha 1e-8) is chapter 14's smooth glass: the same scene
+// (ks 0: chapter 14's Blinn-Phong glint and the facets' are different
+// models of the sun's reflection), camera rays only.
+TEST(Chapter15, SmoothLimitIsChapter14) {
+    std::string dir = rgtest::outputDir("15_smooth");
+    nlohmann::json scene = rgtest::readJson(RG_SOURCE_DIR "/assets/scenes/frosted.json");
+    for (auto& [name, m] : scene["materials"].items()) {
+        if (m.contains("roughness")) m["roughness"] = 1e-4;
+        m["ks"] = 0;
+    }
+    std::string path = writeScene(dir, "smooth", scene);
+    rg::FloatImage a = render(RG_EXE_14, path, dir + "/ch14", 160, 90, {"--frames", "1", "--caustics", "off"});
+    rg::FloatImage b = render(RG_EXE_15, path, dir + "/ch15", 160, 90, {"--frames", "1", "--caustics", "off"});
+    int off = 0;
+    for (uint32_t i = 0; i < a.width * a.height; ++i)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(rg::linearToSrgb(a.rgba[i * 4 + c]) - rg::linearToSrgb(b.rgba[i * 4 + c])) > 1.0 / 255) {
+                ++off;
+                break;
+            }
+    EXPECT_LE(off, int(0.001 * a.width * a.height)) << off << " pixels differ by more than 1/255";
+}
+
+// [region reference]
+// The default scene's camera rays against the reference, which draws the
+// same facets at the same sample points (each branch's own Sobol points,
+// frame after frame) with its own model written in double.
+TEST(Chapter15, MatchesTheReferenceWhereItDrawsTheSameFacets) {
+    rgtest::expectMatchesReference(RG_EXE_15, "", "15_reference", {"--frames", "4", "--caustics", "off"});
+}
+// [end]
+
+// The default scene: the clear ball (left) focuses the sun into a small
+// bright spot in its shadow; the frosted ball (right) spreads the same
+// light: its shadow's brightest pixel is dimmer, and more of its shadow is
+// lit. Read off the picture from where the scene puts the shadows.
+TEST(Chapter15, FrostedGlassSpreadsTheCaustic) {
+    std::string dir = rgtest::outputDir("15_caustics");
+    rg::FloatImage image = render(RG_EXE_15, "", dir + "/default", 320, 180, {"--frames", "16"});
+    // Each ball's shadow lies along the sun's direction on the floor, to
+    // the ball's right and toward the camera; compare the two boxes.
+    auto box = [&](int x0, int y0, int x1, int y1, double& peak, int& lit) {
+        peak = 0, lit = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                double g = channel(image, x, y, 1);
+                peak = std::max(peak, g);
+                if (g > 0.6) ++lit;
+            }
+    };
+    double clearPeak, frostedPeak;
+    int clearLit, frostedLit;
+    box(90, 98, 140, 122, clearPeak, clearLit);
+    box(225, 98, 275, 122, frostedPeak, frostedLit);
+    std::printf("clear ball's shadow: peak %.2f, %d pixels above 0.6; frosted: peak %.2f, %d\n", clearPeak,
+                clearLit, frostedPeak, frostedLit);
+    EXPECT_GT(clearPeak, 1.5 * frostedPeak) << "the clear ball focuses, the frosted one spreads";
+    EXPECT_GT(frostedLit, 0) << "the frosted ball's shadow is lit";
+}
+
+}  // namespace
