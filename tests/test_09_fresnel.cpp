@@ -1,6 +1,7 @@
 // Chapter 09: every Fresnel mode matches the reference; the chapter prints
 // Schlick's error table; a bad mode is rejected; a glint on glass carries
-// the Fresnel share of the light (chapters 09-12).
+// the Fresnel share of the light (chapters 09-12); the sphere reflects more
+// toward its rim (page 09).
 #include "harness.h"
 
 #include <cmath>
@@ -103,6 +104,49 @@ TEST(Chapter09, AGlintOnGlassIsTheFresnelShareOfTheLight) {
             EXPECT_NEAR(g.rgba[best] / o.rgba[best], F, 0.01 * F) << "F " << F << " at cos " << cosI;
         }
     }
+}
+
+}  // namespace
+
+namespace {
+
+// Page 09's "what you should see": the glass sphere of glass_sphere.json
+// "reflects faintly at its centre and strongly toward its rim". What it
+// reflects is the picture with the reflected rays (--depth 1) less the
+// picture without them (--depth 0); its mean over a ring near the sphere's
+// outline must be at least twice its mean over the central disc, where
+// F is 4 %.
+TEST(Chapter09, TheSphereReflectsFaintlyAtItsCentreAndStronglyTowardItsRim) {
+    std::string dir = rgtest::outputDir("09_rim");
+    const int width = 320, height = 180;
+    auto render = [&](const char* depth) {
+        std::string png = dir + "/depth" + depth + ".png";
+        rgtest::RunResult r = rgtest::run(
+            RG_EXE_09, {"--headless", "--validation", "--scene", RG_SOURCE_DIR "/assets/scenes/glass_sphere.json",
+                        "--fresnel", "exact", "--depth", depth, "--width", std::to_string(width), "--height",
+                        std::to_string(height), "--frames", "1", "--output", png});
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return rg::readPfm(dir + "/depth" + depth + ".pfm");
+    };
+    rg::FloatImage with = render("1"), without = render("0");
+    // the unit sphere 4.2 in front of the eye, on the view axis, fov 40 degrees
+    const double pi = 3.14159265358979323846;
+    const double radius = std::tan(std::asin(1 / 4.2)) / std::tan(20 * pi / 180) * height / 2;
+    double centre = 0, ring = 0;
+    int inCentre = 0, inRing = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double r = std::hypot(x + 0.5 - width / 2.0, y + 0.5 - height / 2.0) / radius;
+            size_t i = (size_t(y) * width + x) * 4;
+            double reflected = 0;
+            for (int c = 0; c < 3; ++c) reflected += (with.rgba[i + c] - without.rgba[i + c]) / 3;
+            if (r < 0.3) centre += reflected, ++inCentre;
+            if (r > 0.85 && r < 0.97) ring += reflected, ++inRing;
+        }
+    centre /= inCentre, ring /= inRing;
+    std::printf("reflected light: centre %.4f, near the rim %.4f (%.1f times)\n", centre, ring, ring / centre);
+    EXPECT_GT(centre, 0.0);
+    EXPECT_GT(ring, 2 * centre) << "the rim reflects more than the centre";
 }
 
 }  // namespace
