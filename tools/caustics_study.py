@@ -52,6 +52,9 @@ def measure(args):
         caustic = [i for i in range(size[0] * size[1])
                    if max(abs(srgb(truth[3][n * i + c]) - srgb(off[3][n * i + c])) for c in range(3)) * 255 > 1]
         data["caustic_pixels"] = len(caustic)
+        # the scale a relative error is read against (issue 47: "1 % RMSE")
+        data["caustic_mean"] = (sum(truth[3][n * i + c] for i in caustic for c in range(3)) /
+                                max(1, 3 * len(caustic)))
         frames = 1
         while frames <= args.max_frames:
             for mode, extra in MODES:

@@ -8,7 +8,8 @@
 # it takes minutes on lavapipe; this script plots and includes its results.
 # So are chapter 04's antialiasing, tools/antialias_study.py, chapter 12's,
 # tools/meshes_study.py, chapter 13's, tools/real_glass_study.py, and
-# chapter 14's, tools/caustics_study.py (the same --out).
+# chapter 14's, tools/caustics_study.py, and chapter 15's,
+# tools/frosted_study.py (the same --out).
 # Results from another machine (bin/perf_report --bin bin --out DIR there):
 # copy DIR to docs/perf/<device>/ and run with --assemble-only.
 set -euo pipefail
@@ -68,8 +69,9 @@ section() {
            "\`tools/real_glass_study.py\` for 13)."
       echo
     fi
-    # tools/antialias_study.py, meshes_study.py, real_glass_study.py, caustics_study.py
-    for study in antialias meshes real_glass caustics; do
+    # tools/antialias_study.py, meshes_study.py, real_glass_study.py, caustics_study.py,
+    # frosted_study.py
+    for study in antialias meshes real_glass caustics frosted; do
       if [ -f "$dir/$study.md" ]; then
         cat "$dir/$study.md"
         echo

@@ -60,7 +60,10 @@ def run_chapter(tool, exe, size, extra, png):
     if done.returncode != 0:
         sys.exit(f"{tool}: {' '.join(cmd)} failed:\n{done.stdout}")
     with open(os.path.splitext(png)[0] + ".json") as f:
-        return json.load(f)
+        report = json.load(f)
+    if report.get("non_finite_values", 0):
+        sys.exit(f"{tool}: {' '.join(cmd)}: {report['non_finite_values']} NaN or infinite values in the picture")
+    return report
 
 
 def rmse(a, b, pixels):
