@@ -230,3 +230,48 @@ TEST(Chapter10, ThinPlatesMatchTheReferenceAwayFromTheirRims) {
 }
 
 }  // namespace
+
+namespace {
+
+// Page 10's "what you should see": glass_sphere.json's sphere shows "the
+// sky behind it upside down and mirrored inside it". The sky's landmarks
+// are the sun above, red on the right and blue on the left; inside the
+// sphere's disc (projected from the scene's camera) the sun lies below the
+// centre, red left of it and blue right of it.
+TEST(Chapter10, TheGlassSphereShowsTheSkyUpsideDownAndMirrored) {
+    std::string dir = rgtest::outputDir("10_sky_inverted");
+    const int width = 320, height = 180;
+    rgtest::RunResult r = rgtest::run(
+        RG_EXE_10, {"--headless", "--validation", "--scene", RG_SOURCE_DIR "/assets/scenes/glass_sphere.json",
+                    "--width", std::to_string(width), "--height", std::to_string(height), "--frames", "1",
+                    "--output", dir + "/sphere.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    rgtest::Png png = rgtest::readPng(dir + "/sphere.png");
+    // the unit sphere 4.2 in front of the eye, on the view axis, fov 40 degrees
+    const double pi = 3.14159265358979323846;
+    const double radius = std::tan(std::asin(1 / 4.2)) / std::tan(20 * pi / 180) * height / 2;
+    double redX = 0, blueX = 0, sunY = 0;
+    int reds = 0, blues = 0, suns = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double dx = x + 0.5 - width / 2.0, dy = y + 0.5 - height / 2.0;
+            double d = std::hypot(dx, dy) / radius;
+            const uint8_t* p = png.at(x, y);
+            if (d < 0.85) {
+                // a landmark's colour: one channel well above the other two
+                if (p[0] > p[1] + 60 && p[0] > p[2] + 60) redX += dx, ++reds;
+                if (p[2] > p[0] + 60 && p[2] > p[1] + 30) blueX += dx, ++blues;
+                if (p[0] > 200 && p[1] > 170 && p[0] > p[2] + 60) sunY += dy, ++suns;  // yellow
+            }
+        }
+    std::printf("inside the sphere: %d red pixels at mean x %+.1f, %d blue at %+.1f, %d of the sun at mean y %+.1f\n",
+                reds, reds ? redX / reds : 0.0, blues, blues ? blueX / blues : 0.0, suns, suns ? sunY / suns : 0.0);
+    ASSERT_GT(reds, 5);
+    ASSERT_GT(blues, 5);
+    ASSERT_GT(suns, 5);
+    EXPECT_LT(redX / reds, 0) << "the red landmark (right in the sky) appears left, through the sphere";
+    EXPECT_GT(blueX / blues, 0) << "the blue landmark (left in the sky) appears right";
+    EXPECT_GT(sunY / suns, 0) << "the sun (up in the sky) appears below the centre (y down)";
+}
+
+}  // namespace
