@@ -344,7 +344,8 @@ struct PhotonMapHeader {
     uint emitterCount;
     uvec2 photons;      // Photon[capacity], in the order they were stored
     uvec2 sorted;       // Photon[capacity], by cell
-    uvec2 cells;        // uint[cellCount]
+    // uint[cellCount], then uint[cellCount / GRID_SCAN_BLOCK] for the prefix sum
+    uvec2 cells;
     uvec2 emitters;     // PhotonEmitter[emitterCount]
     // the fates of the frame's photons, counted (the report; energy tests):
     uint escaped;       // left the scene
@@ -361,6 +362,9 @@ struct GridPush {
 };
 RG_SIZE(GridPush, 16);
 #define GRID_GROUP_SIZE 128  // invocations per workgroup (every device has 128)
+// the prefix sum's buckets per invocation, and per workgroup (grid_scan.comp)
+#define GRID_SCAN_RUN 8
+#define GRID_SCAN_BLOCK (GRID_GROUP_SIZE * GRID_SCAN_RUN)
 
 #ifdef __cplusplus
 }  // namespace rg::gpu

@@ -1,8 +1,10 @@
 #version 460
-// Chapter 14's grid, step 2 of 3: the buckets' counts become where each
-// bucket's photons begin (an exclusive prefix sum), in one workgroup: each
-// invocation sums a run of buckets, the runs' sums are added up in shared
-// memory, and each invocation writes its run's starts.
+// Chapter 14's grid, step 2 of 4: the buckets' counts become where each
+// bucket's photons begin (an exclusive prefix sum), a block of
+// GRID_SCAN_BLOCK buckets per workgroup: each invocation sums a run of
+// GRID_SCAN_RUN buckets, the runs' sums are added up in shared memory, and
+// each invocation writes its run's starts within the block. The block's
+// total goes after the buckets, for step 3 (grid_scan_blocks.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "photon_map.glsl"
 layout(local_size_x = GRID_GROUP_SIZE) in;
@@ -13,11 +15,10 @@ shared uint runStart[GRID_GROUP_SIZE];
 void main() {
     PhotonMapRef map = PhotonMapRef(grid.photonMap);
     CellsRef cells = CellsRef(map.header.cells);
-    // cellCount is a power of two of at least 1024: every run is as long
-    uint length = map.header.cellCount / GRID_GROUP_SIZE;
-    uint first = gl_LocalInvocationID.x * length;
+    uint first =
+        gl_WorkGroupID.x * GRID_SCAN_BLOCK + gl_LocalInvocationID.x * GRID_SCAN_RUN;
     uint sum = 0u;
-    for (uint i = 0u; i < length; ++i) sum += cells.cells[first + i];
+    for (uint i = 0u; i < GRID_SCAN_RUN; ++i) sum += cells.cells[first + i];
     runStart[gl_LocalInvocationID.x] = sum;
     barrier();
     if (gl_LocalInvocationID.x == 0u) {
@@ -27,10 +28,11 @@ void main() {
             runStart[k] = total;
             total += count;
         }
+        cells.cells[map.header.cellCount + gl_WorkGroupID.x] = total;
     }
     barrier();
     uint start = runStart[gl_LocalInvocationID.x];
-    for (uint i = 0u; i < length; ++i) {
+    for (uint i = 0u; i < GRID_SCAN_RUN; ++i) {
         uint count = cells.cells[first + i];
         cells.cells[first + i] = start;
         start += count;

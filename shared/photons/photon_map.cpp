@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace rg {
@@ -121,7 +122,9 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     };
     map.photons = deviceBuffer(VkDeviceSize(map.capacity) * sizeof(gpu::Photon));
     map.sorted = deviceBuffer(VkDeviceSize(map.capacity) * sizeof(gpu::Photon));
-    map.cells = deviceBuffer(VkDeviceSize(map.cellCount) * sizeof(uint32_t));
+    // the buckets, then the prefix sum's blocks' totals
+    VkDeviceSize buckets = map.cellCount + map.cellCount / GRID_SCAN_BLOCK;
+    map.cells = deviceBuffer(buckets * sizeof(uint32_t));
     std::vector<gpu::PhotonEmitter> emitters = photonEmitters(c.scene);
     map.emitterCount = uint32_t(emitters.size());
     emitters.resize(std::max<size_t>(emitters.size(), 1));  // a buffer is never empty
@@ -154,6 +157,10 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
                                       "14_caustics/grid_count.comp");
     map.scan = createComputePipeline(gpu, deletion, map.gridLayout,
                                      "14_caustics/grid_scan.comp");
+    map.scanBlocks = createComputePipeline(gpu, deletion, map.gridLayout,
+                                           "14_caustics/grid_scan_blocks.comp");
+    map.scanAdd = createComputePipeline(gpu, deletion, map.gridLayout,
+                                        "14_caustics/grid_scan_add.comp");
     map.scatter = createComputePipeline(gpu, deletion, map.gridLayout,
                                         "14_caustics/grid_scatter.comp");
     return map;
@@ -201,10 +208,16 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     gpu::GridPush grid{.photonMap = push.photonMap, .cellSize = 2 * radius};
     vkCmdPushConstants(cmd, map.gridLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof grid,
                        &grid);
-    uint32_t groups = (map.capacity + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
-    for (VkPipeline stage : {map.count, map.scan, map.scatter}) {
+    // workgroups: one per GRID_GROUP_SIZE photons, buckets, or prefix-sum block
+    uint32_t photonGroups = (map.capacity + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
+    uint32_t cellGroups = map.cellCount / GRID_GROUP_SIZE;
+    const std::pair<VkPipeline, uint32_t> steps[] = {
+        {map.count, photonGroups},      {map.scan, map.cellCount / GRID_SCAN_BLOCK},
+        {map.scanBlocks, 1},            {map.scanAdd, cellGroups},
+        {map.scatter, photonGroups}};
+    for (auto [stage, groups] : steps) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, stage);
-        vkCmdDispatch(cmd, stage == map.scan ? 1 : groups, 1, 1);
+        vkCmdDispatch(cmd, groups, 1, 1);
         memoryBarrier(cmd, compute, VK_ACCESS_SHADER_WRITE_BIT, compute | rtStage,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }

@@ -47,7 +47,9 @@ struct PhotonMap {
     uint32_t traced = 0;  // maps traced in this run (the report)
     float radius = 0;     // the radius of the map traced last (0: none yet)
     VkPipelineLayout gridLayout = VK_NULL_HANDLE;
-    VkPipeline count = VK_NULL_HANDLE, scan = VK_NULL_HANDLE, scatter = VK_NULL_HANDLE;
+    // count, prefix sum (three steps), scatter
+    VkPipeline count = VK_NULL_HANDLE, scan = VK_NULL_HANDLE, scanBlocks = VK_NULL_HANDLE,
+               scanAdd = VK_NULL_HANDLE, scatter = VK_NULL_HANDLE;
 };
 // `photonShader`: the photons' ray generation shader ("14_caustics/photon.rgen").
 PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& settings,
