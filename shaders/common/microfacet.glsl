@@ -70,16 +70,27 @@ float visibleNormalPdf(vec3 wo, vec3 m, float alpha) {
 // normalized, and (1 - F) D G2 |wo.m| |wi.m| n2^2 / (|wo.z| |wi.z| (n1 wo.m
 // + n2 wi.m)^2). Radiance is not rescaled by (n1/n2)^2 where it crosses:
 // as chapter 13's smooth glass, whose rays leave every glass they enter.
-float dielectricCosBsdf(vec3 wo, vec3 wi, float alpha, float n1, float n2,
-                        uint fresnelMode, float f0) {
+//
+// The facet normal that turns wo into wi: the half vector of a reflection
+// or of a refraction, on the side of z; vec3(0) where no facet can (wo or
+// wi on the wrong side of it).
+vec3 halfVector(vec3 wo, vec3 wi, float n1, float n2) {
     bool reflected = wi.z > 0.0f;
     vec3 m = reflected ? wo + wi : -(n1 * wo + n2 * wi);
-    if (dot(m, m) == 0.0f) return 0.0f;
+    if (dot(m, m) == 0.0f) return vec3(0.0f);
     m = normalize(m);
     if (m.z < 0.0f) m = -m;
     float om = dot(wo, m), im = dot(wi, m);
     // each side of the microfacet as the macro-surface says
-    if (om <= 0.0f || (reflected ? im <= 0.0f : im >= 0.0f)) return 0.0f;
+    if (om <= 0.0f || (reflected ? im <= 0.0f : im >= 0.0f)) return vec3(0.0f);
+    return m;
+}
+float dielectricCosBsdf(vec3 wo, vec3 wi, float alpha, float n1, float n2,
+                        uint fresnelMode, float f0) {
+    bool reflected = wi.z > 0.0f;
+    vec3 m = halfVector(wo, wi, n1, n2);
+    if (m == vec3(0.0f)) return 0.0f;
+    float om = dot(wo, m), im = dot(wi, m);
     float F = fresnel(fresnelMode, f0, om, n1, n2);
     float DG = ggxD(m, alpha) * smithG2(wo, wi, alpha);
     if (reflected) return F * DG / (4.0f * wo.z);
@@ -93,12 +104,9 @@ float dielectricCosBsdf(vec3 wo, vec3 wi, float alpha, float n1, float n2,
 // of Walter et al. eqs. 14 and 17).
 float dielectricPdf(vec3 wo, vec3 wi, float alpha, float n1, float n2) {
     bool reflected = wi.z > 0.0f;
-    vec3 m = reflected ? wo + wi : -(n1 * wo + n2 * wi);
-    if (dot(m, m) == 0.0f) return 0.0f;
-    m = normalize(m);
-    if (m.z < 0.0f) m = -m;
+    vec3 m = halfVector(wo, wi, n1, n2);
+    if (m == vec3(0.0f)) return 0.0f;
     float om = dot(wo, m), im = dot(wi, m);
-    if (om <= 0.0f || (reflected ? im <= 0.0f : im >= 0.0f)) return 0.0f;
     float pm = visibleNormalPdf(wo, m, alpha);
     if (reflected) return pm / (4.0f * om);
     float denominator = n1 * om + n2 * im;
