@@ -78,12 +78,14 @@ def furnace_loss(roughness):
     disc at 64x64 (tests/test_15_frosted_glass.cpp's measure)."""
     def measure(report, png):
         scene = json.loads((ROOT / "assets" / "scenes" / "furnace.json").read_text())
-        scene["materials"]["rough_glass"]["roughness"] = roughness
-        path = png.parent / f"furnace_scene_{roughness}.json"
-        path.write_text(json.dumps(scene))
-        out = png.parent / f"furnace_{roughness}.png"
-        subprocess.run([str(BIN / "15_frosted_glass"), "--headless", "--scene", str(path), *FURNACE,
-                        "--output", str(out)], cwd=ROOT, check=True, capture_output=True, timeout=600)
+        out = png  # the claim's own run: furnace.json as it is
+        if scene["materials"]["rough_glass"]["roughness"] != roughness:
+            scene["materials"]["rough_glass"]["roughness"] = roughness
+            path = png.parent / f"furnace_scene_{roughness}.json"
+            path.write_text(json.dumps(scene))
+            out = png.parent / f"furnace_{roughness}.png"
+            subprocess.run([str(BIN / "15_frosted_glass"), "--headless", "--scene", str(path), *FURNACE,
+                            "--output", str(out)], cwd=ROOT, check=True, capture_output=True, timeout=600)
         image = read_pfm(out.with_suffix(".pfm"))
         h, w = image.shape[:2]
         ys, xs = numpy.mgrid[0:h, 0:w]

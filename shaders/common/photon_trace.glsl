@@ -27,13 +27,6 @@ float random() {
     return toUnit(rng);
 }
 
-// Two unit vectors perpendicular to unit w and to each other (Duff et al. 2017).
-void basisAround(vec3 w, out vec3 t, out vec3 b) {
-    float s = w.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + w.z), c = w.x * w.y * a;
-    t = vec3(1.0 + s * w.x * w.x * a, s * c, -s * w.x);
-    b = vec3(c, s + w.y * w.y * a, -w.y);
-}
 
 // [region emit]
 // Emitter e's cone, from a point light: its axis and the cosine of its
@@ -65,8 +58,8 @@ void emitPhoton(out vec3 origin, out vec3 direction, out vec3 power) {
     if (light.position.w == LIGHT_DIRECTIONAL) {
         // a point of the beam's disc, uniformly; the photon starts before it
         direction = light.position.xyz;
-        vec3 t, b;
-        basisAround(direction, t, b);
+        mat3 frame = basisAround(direction);  // sampling.glsl
+        vec3 t = frame[0], b = frame[1];
         float radius = e.target.w * sqrt(v.x), phi = 2.0 * kPi * v.y;
         vec3 x = e.target.xyz + radius * (cos(phi) * t + sin(phi) * b);
         for (uint j = 0u; j < count; ++j) {
@@ -82,12 +75,13 @@ void emitPhoton(out vec3 origin, out vec3 direction, out vec3 power) {
         origin = x - direction * e.backoff;
     } else {
         // a direction of the cone, uniformly over its solid angle
-        vec3 axis, t, b;
+        vec3 axis;
         float cosMax = coneCosine(e, light.position.xyz, axis);
         float cosine = 1.0 - v.x * (1.0 - cosMax);
         float sine = sqrt(max(0.0, 1.0 - cosine * cosine)), phi = 2.0 * kPi * v.y;
-        basisAround(axis, t, b);
-        direction = normalize(cosine * axis + sine * (cos(phi) * t + sin(phi) * b));
+        mat3 frame = basisAround(axis);
+        direction =
+            normalize(cosine * axis + sine * (cos(phi) * frame[0] + sin(phi) * frame[1]));
         for (uint j = 0u; j < count; ++j) {
             PhotonEmitter o = emitters.emitters[j];
             if (o.light != e.light) continue;

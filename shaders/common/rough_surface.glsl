@@ -15,14 +15,6 @@ float roughAlpha(GpuMaterial m) {
 }
 
 // [region rough_split]
-// The frame of the facing shading normal ns: z = ns (Duff et al. 2017).
-void roughFrame(vec3 ns, out vec3 t, out vec3 b) {
-    float s = ns.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + ns.z), c = ns.x * ns.y * a;
-    t = vec3(1.0 + s * ns.x * ns.x * a, s * c, -s * ns.x);
-    b = vec3(c, s + ns.y * ns.y * a, -ns.y);
-}
-
 struct RoughSplit {
     vec3 reflected, refracted;  // world directions
     float reflectedShare, refractedShare;
@@ -38,8 +30,8 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
                       vec3 direction, vec2 u) {
     if (push.facetSampling == FACETS_CONE)  // the comparison below
         return coneSplit(m, alpha, n1, n2, n, ns, direction, u);
-    vec3 t, b;
-    roughFrame(ns, t, b);
+    mat3 frame = basisAround(ns);  // the frame of ns, as the reference builds it
+    vec3 t = frame[0], b = frame[1];
     vec3 wo = normalize(
         vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
     vec3 facet = sampleVisibleNormal(wo, alpha, u);
@@ -62,6 +54,19 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
 }
 // [end]
 
+// The material's microfacet lobe toward wi (local; BSDF times |cos|): its
+// dielectric part both ways, its mirror part F D G2 / (4 cos_o) on the
+// viewer's side, with no Fresnel.
+float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi) {
+    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
+    float f = transmission *
+              dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
+    if (wi.z > 0.0 && mirror > 0.0)
+        f += mirror * ggxD(normalize(wo + wi), alpha) * smithG2(wo, wi, alpha) /
+             (4.0 * wo.z);
+    return f;
+}
+
 // [region cone_split]
 // --sampling cone, for the comparison on page 15: chapter 11's sampler for
 // the same model. Each branch's direction is uniform in the cone of
@@ -71,18 +76,12 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
 // with weights that are not bounded (and nothing from outside the cone).
 float coneShare(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi,
                 float cosMax) {
-    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
-    float f = transmission *
-              dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
-    if (wi.z > 0.0 && mirror > 0.0)
-        f += mirror * ggxD(normalize(wo + wi), alpha) * smithG2(wo, wi, alpha) /
-             (4.0 * wo.z);
-    return f * 2.0 * kPi * (1.0 - cosMax);
+    return roughLobe(m, alpha, n1, n2, wo, wi) * 2.0 * kPi * (1.0 - cosMax);
 }
 RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
                      vec3 direction, vec2 u) {
-    vec3 t, b;
-    roughFrame(ns, t, b);
+    mat3 frame = basisAround(ns);  // the frame of ns, as the reference builds it
+    vec3 t = frame[0], b = frame[1];
     vec3 wo = normalize(
         vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
     float roughness = sqrt(alpha), cosMax = cos(roughness * 0.5 * kPi);
@@ -111,11 +110,10 @@ RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec
 // it), its shadow ray leaving from the far side.
 vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float error,
                 vec3 n, vec3 ns, vec3 v, inout uint rays) {
-    vec3 t, b;
-    roughFrame(ns, t, b);
+    mat3 frame = basisAround(ns);  // the frame of ns, as the reference builds it
+    vec3 t = frame[0], b = frame[1];
     vec3 wo = vec3(dot(v, t), dot(v, b), max(dot(v, ns), 1e-6));
     wo = normalize(wo);
-    float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < camera.counts.z; ++i) {
         bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
@@ -124,12 +122,7 @@ vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float er
         vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
         bool behind = dot(l, n) < 0.0;
         if (behind != (wi.z < 0.0)) continue;  // between the two normals: neither side
-        float f = transmission *
-                  dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
-        if (!behind && mirror > 0.0) {
-            vec3 h = normalize(wo + wi);
-            f += mirror * ggxD(h, alpha) * smithG2(wo, wi, alpha) / (4.0 * wo.z);
-        }
+        float f = roughLobe(m, alpha, n1, n2, wo, wi);
         vec3 irradiance = sun ? lights[i].intensity.rgb
                               : lights[i].intensity.rgb / dot(toLight, toLight);
         vec3 light = f * irradiance;

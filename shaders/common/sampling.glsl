@@ -91,6 +91,16 @@ vec2 samplePoint(uint pattern, uint i, uint n, uint seed) {
 }
 // [end]
 
+// An orthonormal basis around the unit vector w (Duff et al., "Building an
+// Orthonormal Basis, Revisited", 2017): columns t, b and w itself (chapter
+// 14's beams and cones, chapter 15's surface frame).
+mat3 basisAround(vec3 w) {
+    float s = w.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + w.z), c = w.x * w.y * a;
+    return mat3(vec3(1.0 + s * w.x * w.x * a, s * c, -s * w.x),
+                vec3(c, s + w.y * w.y * a, -w.y), w);
+}
+
 // [region lobe]
 // A direction in the cone of half-angle roughness * pi/2 around the unit
 // vector r, uniform over the cone's solid angle; u in [0,1)^2.
@@ -99,13 +109,9 @@ vec3 lobeDirection(vec3 r, float roughness, vec2 u) {
     float cosTheta = 1.0 - u.x * (1.0 - cosMax);
     float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
     float phi = 2.0 * kPi * u.y;
-    // An orthonormal basis around r (Duff et al., "Building an Orthonormal Basis,
-    // Revisited", 2017).
-    float s = r.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + r.z), b = r.x * r.y * a;
-    vec3 t1 = vec3(1.0 + s * r.x * r.x * a, s * b, -s * r.x);
-    vec3 t2 = vec3(b, s + r.y * r.y * a, -r.y);
-    return normalize(sinTheta * cos(phi) * t1 + sinTheta * sin(phi) * t2 + cosTheta * r);
+    mat3 frame = basisAround(r);  // t, b, r
+    return normalize(sinTheta * cos(phi) * frame[0] + sinTheta * sin(phi) * frame[1] +
+                     cosTheta * r);
 }
 // [end]
 #endif
