@@ -179,6 +179,14 @@ float frameRadius(const PhotonSettings& s, uint32_t accumulated) {
 }
 // [end]
 
+// The push constants' fields the camera rays read the map with.
+void pointAtPhotonMap(gpu::RtPush& push, const PhotonMap& map, uint32_t photons,
+                      float radius) {
+    push.photonMap = {uint32_t(map.header.address), uint32_t(map.header.address >> 32)};
+    push.photonRadius = radius;
+    push.photonsEmitted = photons;
+}
+
 // [region record]
 // One frame's photon map: clear, trace, count per cell, prefix sum, scatter.
 void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& rt,
@@ -199,9 +207,7 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     memoryBarrier(cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, rtStage | compute,
                   readWrite);
 
-    push.photonMap = {uint32_t(map.header.address), uint32_t(map.header.address >> 32)};
-    push.photonRadius = radius;
-    push.photonsEmitted = photons;
+    pointAtPhotonMap(push, map, photons, radius);
     recordTrace(cmd, map.tracer, rt.descriptors.set, &push, sizeof push, photons, 1);
     memoryBarrier(cmd, rtStage, VK_ACCESS_SHADER_WRITE_BIT, compute, readWrite);
 

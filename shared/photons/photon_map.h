@@ -55,6 +55,8 @@ struct PhotonMap {
 PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& settings,
                           const std::string& photonShader);
 float frameRadius(const PhotonSettings& s, uint32_t accumulated);
+void pointAtPhotonMap(gpu::RtPush& push, const PhotonMap& map, uint32_t photons,
+                      float radius);
 void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& rt,
                      gpu::RtPush& push, uint32_t photons, float radius);
 

@@ -110,10 +110,7 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
         // parameter changed traces it again.
         photons.kept = change.viewOnly && map->radius == photons.lastRadius;
         if (photons.kept) {
-            push.photonMap = {uint32_t(map->header.address),
-                              uint32_t(map->header.address >> 32)};
-            push.photonRadius = map->radius;
-            push.photonsEmitted = uint32_t(photons.photons);
+            pointAtPhotonMap(push, *map, uint32_t(photons.photons), map->radius);
             return;
         }
         recordPhotonMap(cmd, *map, rt, push, uint32_t(photons.photons),

@@ -335,44 +335,39 @@ glm::dvec3 ReferenceRenderer::shadeRay(const ReferenceSettings& settings, uint32
     if (stdError) *stdError = 0;
     const RayCone camera{pixelSpread(height), 0};  // chapter 12's ray cones
     // chapter 13: the eye may be inside a medium
-    if (settings.stage >= ReferenceStage::Frosted) {
-        // Chapter 15: every frame's tree has its own rough branches: the mean
-        // of the frames' trees, each with its frame's wavelength (one frame's:
-        // that frame's).
-        MediumStack eye;
-        if (scene_.cameraMedium >= 0)
-            eye.materials.push_back(uint32_t(scene_.cameraMedium));
-        glm::dvec3 sum(0);
-        uint32_t frames = std::max(1u, settings.frames), count = 0;
-        for (uint32_t k = 0; k < frames; ++k) {
-            if (frame >= 0 && int(k) != frame) continue;
-            std::vector<double> wavelengths{
-                referencePathWavelength(x, y, settings.firstFrame, k)};
-            eye.wavelengths = &wavelengths;
-            BranchId branch{
-                .seed = shader::pixelSeed(shader::uvec2(x, y), kFacetStream),
-                .accumulated = k};
-            int passes = 0;
-            sum += radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
-                            camera, branch);
-            ++count;
-        }
-        return sum / double(count);
-    }
     if (settings.stage >= ReferenceStage::Media) {
         MediumStack eye;
         if (scene_.cameraMedium >= 0)
             eye.materials.push_back(uint32_t(scene_.cameraMedium));
         // the GPU's, frame after frame (one frame's: that frame's)
+        std::vector<uint32_t> frames;
         std::vector<double> wavelengths;
         for (uint32_t k = 0; k < std::max(1u, settings.frames); ++k)
-            if (frame < 0 || int(k) == frame)
+            if (frame < 0 || int(k) == frame) {
+                frames.push_back(k);
                 wavelengths.push_back(
                     referencePathWavelength(x, y, settings.firstFrame, k));
-        eye.wavelengths = &wavelengths;
+            }
         int passes = 0;
-        return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
-                        camera);
+        if (settings.stage < ReferenceStage::Frosted) {
+            eye.wavelengths = &wavelengths;
+            return radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
+                            camera);
+        }
+        // Chapter 15: every frame's tree has its own rough branches: the mean
+        // of the frames' trees, each with its frame's wavelength.
+        glm::dvec3 sum(0);
+        for (size_t i = 0; i < frames.size(); ++i) {
+            std::vector<double> one{wavelengths[i]};
+            eye.wavelengths = &one;
+            BranchId branch{
+                .seed = shader::pixelSeed(shader::uvec2(x, y), kFacetStream),
+                .accumulated = frames[i]};
+            passes = 0;
+            sum += radiance(settings, origin, direction, 0, glm::dvec3(1.0), eye, passes,
+                            camera, branch);
+        }
+        return sum / double(frames.size());
     }
     if (settings.stage != ReferenceStage::Rough)
         return radiance(settings, origin, direction, 0, glm::dvec3(1.0), camera);
