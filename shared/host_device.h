@@ -266,14 +266,37 @@ struct RtPush {
     uint caustics;        // chapter 14's --caustics: CAUSTICS_*
     uint photonSeed;      // chapter 14's --photon-seed: another set of photons
     uint facetSampling;   // chapter 15's --sampling: FACETS_VISIBLE or FACETS_CONE
-    uint unused2;
+    // chapter 15's --multiple-scattering: 1 compensates the light single
+    // scattering loses, with the albedo table at albedoTable (device address)
+    uint multipleScattering;
+    uvec2 albedoTable;
 };
-RG_SIZE(RtPush, 80);
+RG_SIZE(RtPush, 88);
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
 #define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)
 #define FACETS_VISIBLE 0u  // a rough hit draws a visible normal (microfacet.glsl)
 #define FACETS_CONE 1u     // ... or a direction in chapter 11's cone (the comparison)
+
+// Chapter 15's albedo table: E(cos_o, roughness, eta), the share of the light
+// one microfacet scattering keeps (tools/microfacet_albedo.cpp computes it,
+// albedo_table.glsl reads it). Nodes cos_o = i / (ALBEDO_COS - 1) and
+// roughness = j / (ALBEDO_ROUGH - 1); slices 0 .. ALBEDO_ETA - 1: a dielectric
+// entered, eta = n2 / n1 from 1 to 3; the next ALBEDO_ETA: left, eta = 1 / that;
+// the last: a mirror (F = 1).
+#define ALBEDO_COS 32u
+#define ALBEDO_ROUGH 32u
+#define ALBEDO_ETA 16u
+#define ALBEDO_ETA_MAX 3.0f
+#define ALBEDO_MIRROR_SLICE (2u * ALBEDO_ETA)
+#define ALBEDO_SLICES (2u * ALBEDO_ETA + 1u)
+#define ALBEDO_ENTRIES (ALBEDO_SLICES * ALBEDO_ROUGH * ALBEDO_COS)
+// the index of refraction n2 / n1 of a dielectric slice
+RG_INLINE float albedoSliceEta(uint slice) {
+    uint k = slice % ALBEDO_ETA;
+    float eta = 1.0f + (ALBEDO_ETA_MAX - 1.0f) * float(k) / float(ALBEDO_ETA - 1u);
+    return slice < ALBEDO_ETA ? eta : 1.0f / eta;
+}
 
 // A branch of a ray tree still to trace (chapter 10).
 struct Branch {

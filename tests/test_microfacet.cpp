@@ -10,7 +10,10 @@
 // - reflection is reciprocal, transmission reciprocal up to n^2;
 // - energy: the white furnace in one bounce (the light scattered from a
 //   uniform sky) is 1 at alpha -> 0 and falls with alpha, never above 1;
-//   the loss of single scattering is printed (chapter 15's page).
+//   the loss of single scattering is printed (chapter 15's page);
+// - the albedo table the build computes from the visible normals' shares
+//   (tools/microfacet_albedo.cpp) is the BSDF integrated over directions,
+//   and compensated by it one bounce keeps all the light.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +23,13 @@
 #include <vector>
 
 #include "glsl_as_cpp.h"
+#include "scene/microfacet_albedo.h"
+
+namespace shader {
+#define ALBEDO_TABLE(i) rg::kMicrofacetAlbedo[i]
+#include "albedo_table.glsl"
+#undef ALBEDO_TABLE
+}  // namespace shader
 
 namespace {
 
@@ -285,6 +295,52 @@ TEST(Microfacet, OneBounceFurnaceLosesEnergyWithRoughnessNeverGains) {
     EXPECT_LT(albedo(1.0f, 1.5f, 1, 0), 0.5);
     EXPECT_LT(albedo(1.0f, 1.5f, 1, 0.524), 0.5);
 }
+
+// [region albedo_table]
+// The table's nodes against the BSDF integrated over the sphere of
+// directions (the evaluation, not the sampling the table was made with),
+// for a dielectric entered and left and for a mirror (F = 1: D G2 / (4 cos_o)).
+TEST(Microfacet, AlbedoTableIsTheIntegralOfTheBsdf) {
+    double worst = 0;
+    for (uint32_t slice : {4u, 15u, ALBEDO_ETA + 4u, ALBEDO_ETA + 15u, ALBEDO_MIRROR_SLICE})
+        for (uint32_t r : {9u, 16u, 31u})
+            for (uint32_t c : {8u, 20u, 31u}) {
+                float cosO = float(c) / (ALBEDO_COS - 1), roughness = float(r) / (ALBEDO_ROUGH - 1);
+                float alpha = roughness * roughness, eta = rg::gpu::albedoSliceEta(slice);
+                vec3 wo(std::sqrt(1 - cosO * cosO), 0, cosO);
+                // the midpoint rule needs finer steps for the narrower lobe
+                double integral = integrate([&](vec3 wi) -> double {
+                    if (slice != ALBEDO_MIRROR_SLICE)
+                        return shader::dielectricCosBsdf(wo, wi, alpha, 1, eta, FRESNEL_EXACT, 0);
+                    if (wi.z <= 0) return 0;
+                    return shader::ggxD(glm::normalize(wo + wi), alpha) * shader::smithG2(wo, wi, alpha) /
+                           (4 * wo.z);
+                }, kPi, r < 10 ? 1600 : 800);
+                double table = rg::kMicrofacetAlbedo[(slice * ALBEDO_ROUGH + r) * ALBEDO_COS + c];
+                worst = std::max(worst, std::abs(table - integral));
+                EXPECT_NEAR(table, integral, 2e-3)
+                    << "slice " << slice << " (eta " << eta << "), roughness " << roughness << ", cos " << cosO;
+                EXPECT_LE(table, 1 + 1e-4);
+            }
+    std::printf("albedo table against the integrated BSDF: largest difference %.5f\n", worst);
+    // roughness 0 keeps everything
+    for (uint32_t slice = 0; slice < ALBEDO_SLICES; ++slice)
+        EXPECT_NEAR(rg::kMicrofacetAlbedo[slice * ALBEDO_ROUGH * ALBEDO_COS + ALBEDO_COS - 1], 1.0, 1e-5);
+}
+
+// Between the nodes (albedo_table.glsl's interpolation) the table still
+// gives the albedo, and the compensated bounce keeps 1 within 1 %.
+TEST(Microfacet, CompensatedBounceKeepsAllTheLight) {
+    for (auto [n1, n2] : {std::pair{1.0f, 1.5f}, {1.5f, 1.0f}, {1.0f, 1.33f}, {1.0f, 2.4f}, {1.33f, 1.5f}})
+        for (float roughness : {0.25f, 0.45f, 0.7f, 0.95f})
+            for (double theta : {0.1, 0.7, 1.2}) {
+                double e = albedo(roughness * roughness, n1, n2, theta);
+                double table = shader::dielectricAlbedo(float(std::cos(theta)), roughness, n1, n2);
+                EXPECT_NEAR(e / table, 1.0, 0.01)
+                    << "n " << n1 << " -> " << n2 << ", roughness " << roughness << ", theta " << theta;
+            }
+}
+// [end]
 
 TEST(Microfacet, SmoothLimitIsTheMirrorAndSnell) {
     vec3 wo = fromAngles(0.6, 0.2);

@@ -6,12 +6,42 @@
 // refracts there with chapter 13's exact Fresnel (Walter et al. 2007). The
 // light that leaves through glass spreads: frosted glass, and through
 // chapter 14's photons, a soft caustic. Roughness 0 is chapter 14 exactly.
+#include "app/app.h"
 #include "chapter/rt_options.h"
 #include "photons/photon_pass.h"
+#include "scene/microfacet_albedo.h"
+#include "vulkan/resources.h"
+
+// [region compensation]
+// The light single scattering loses, given back (page 15, "Energy"): the
+// albedo table, computed at build time (tools/microfacet_albedo.cpp), goes
+// to the GPU once; each frame's push constants point the shaders at it
+// (rough_surface.glsl's compensation) and the reference does the same.
+rg::FramePass withCompensation(rg::FramePass pass, const rg::FramePassContext& c,
+                               const int& multipleScattering) {
+    rg::Buffer table = rg::createDeviceBuffer(
+        c.app.gpu, c.app.deletion, rg::kMicrofacetAlbedo, sizeof rg::kMicrofacetAlbedo,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+    auto record = pass.record;
+    pass.record = [=, &multipleScattering](VkCommandBuffer cmd, rg::gpu::RtPush& push,
+                                           rg::FrameChange change) {
+        push.multipleScattering = multipleScattering == 0;  // "on"
+        push.albedoTable = {uint32_t(table.address), uint32_t(table.address >> 32)};
+        if (record) record(cmd, push, change);
+    };
+    auto reference = pass.reference;
+    pass.reference = [=, &multipleScattering](rg::ReferenceSettings& r) {
+        r.multipleScattering = multipleScattering == 0;
+        if (reference) reference(r);
+    };
+    return pass;
+}
+// [end]
 
 int main(int argc, char** argv) {
     // chapter 14's photon pass, its photons through rough surfaces too
     rg::PhotonChapter photons = rg::photonChapter("15_frosted_glass/photon.rgen");
+    int multipleScattering = 0;  // on
     return rg::runRtChapter(argc, argv, {
         .name = "15_frosted_glass",
         .description = "RayGlass chapter 15: frosted glass, microfacet reflection and "
@@ -30,10 +60,16 @@ int main(int argc, char** argv) {
                           "chapter 11's cone (page 15's comparison; the reference "
                           "draws visible normals)",
                           {"visible", "cone"});
+            params.choice("--multiple-scattering", multipleScattering,
+                          "Give back the light single scattering between the facets "
+                          "loses (the albedo table), or leave it lost",
+                          {"on", "off"});
             photons.options(params, s);
         },
         .physicalLights = true,
         .adaptShaders = photons.adaptShaders,
-        .framePass = photons.framePass,
+        .framePass = [&](const rg::FramePassContext& c) {
+            return withCompensation(photons.framePass(c), c, multipleScattering);
+        },
     });
 }

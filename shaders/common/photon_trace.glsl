@@ -3,7 +3,8 @@
 // photon_map.cpp's photonEmitters), follows reflection and refraction as chapter 13's ray
 // tree does, but one branch at a time, chosen at random with the Fresnel
 // shares as probabilities (Russian roulette: the photon's power never
-// grows, and on average each branch gets its share), is absorbed along the
+// grows but where chapter 15's compensated shares exceed 1, and on average
+// each branch gets its share), is absorbed along the
 // way, and is stored where it meets a diffuse surface after at least one
 // mirror or glass: the caustic photon map.
 #ifndef PHOTON_TRACE_GLSL
@@ -166,6 +167,10 @@ void main() {
             rough = roughSplit(m, alpha, n1, n2, n, ns, direction,
                                vec2(random(), random()));
             s.reflected = rough.reflectedShare, s.refracted = rough.refractedShare;
+            // compensated shares may add up past 1: the roulette then
+            // chooses by their ratio and the photon carries their sum
+            float sum = s.reflected + s.refracted;
+            if (sum > 1.0) power *= sum, s.reflected /= sum, s.refracted /= sum;
         }
 #endif
         // [region store]

@@ -4,8 +4,17 @@
 // with their shares, and the glints of the lights.
 #ifndef ROUGH_SURFACE_GLSL
 #define ROUGH_SURFACE_GLSL
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 #include "fresnel.glsl"
 #include "microfacet.glsl"
+
+// The albedo table (chapter 15's main.cpp uploads it) by device address.
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AlbedoTable {
+    float entries[];
+};
+#define ALBEDO_TABLE(i) AlbedoTable(push.albedoTable).entries[i]
+#include "albedo_table.glsl"
 
 // glTF's convention (and PBRT's RoughnessToAlpha): alpha = roughness^2, so
 // that roughness looks even from 0 to 1. Thin walls stay smooth.
@@ -13,6 +22,25 @@ float roughAlpha(GpuMaterial m) {
     bool thin = kThinWalls && (m.flags & MATERIAL_THIN) != 0u;
     return thin ? 0.0 : m.extra.y * m.extra.y;
 }
+
+// [region compensation]
+// Single scattering loses the light that leaves a facet toward another
+// facet; really it scatters on and leaves (Kulla and Conty 2017). Turquin's
+// compensation (2019) returns it in the lobe's own shape: the dielectric's
+// lobe over its albedo E(cos_o) keeps all the light, as a clear dielectric
+// must; a mirror of reflectivity R keeps 1 + R (1 - E) / E times its lobe
+// (each further bounce takes R again). --multiple-scattering off: 1.
+struct Compensation {
+    float dielectric, mirror;
+};
+Compensation compensation(GpuMaterial m, float alpha, float n1, float n2, float cosO) {
+    if (push.multipleScattering == 0u) return Compensation(1.0, 1.0);
+    float roughness = sqrt(alpha);
+    float kept = max(dielectricAlbedo(cosO, roughness, n1, n2), 0.05);
+    float keptMirror = max(mirrorAlbedo(cosO, roughness), 0.05);
+    return Compensation(1.0 / kept, 1.0 + m.params.y * (1.0 - keptMirror) / keptMirror);
+}
+// [end]
 
 // [region rough_split]
 struct RoughSplit {
@@ -38,6 +66,7 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
     MicrofacetSplit s =
         microfacetSplit(wo, facet, alpha, n1, n2, push.fresnelMode, m.extra.x);
     float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
+    Compensation c = compensation(m, alpha, n1, n2, wo.z);
     RoughSplit r;
     r.reflected = s.reflected.x * t + s.reflected.y * b + s.reflected.z * ns;
     r.refracted = s.refracted.x * t + s.refracted.y * b + s.refracted.z * ns;
@@ -45,8 +74,9 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
     float masking = s.reflected.z > 0.0 ? smithG2(wo, s.reflected, alpha) /
                                               smithG1(wo, alpha)
                                         : 0.0;
-    r.reflectedShare = transmission * s.reflectedShare + mirror * masking;
-    r.refractedShare = transmission * s.refractedShare;
+    r.reflectedShare =
+        transmission * c.dielectric * s.reflectedShare + mirror * c.mirror * masking;
+    r.refractedShare = transmission * c.dielectric * s.refractedShare;
     // a mesh's flat triangle (n) decides the sides, as ray_tree.glsl's sides
     if (dot(r.reflected, n) <= 0.0) r.reflectedShare = 0.0;
     if (dot(r.refracted, n) >= 0.0) r.refractedShare = 0.0;
@@ -56,14 +86,15 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
 
 // The material's microfacet lobe toward wi (local; BSDF times |cos|): its
 // dielectric part both ways, its mirror part F D G2 / (4 cos_o) on the
-// viewer's side, with no Fresnel.
+// viewer's side, with no Fresnel; each compensated as its branches are.
 float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi) {
     float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
-    float f = transmission *
+    Compensation c = compensation(m, alpha, n1, n2, wo.z);
+    float f = transmission * c.dielectric *
               dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
     if (wi.z > 0.0 && mirror > 0.0)
-        f += mirror * ggxD(normalize(wo + wi), alpha) * smithG2(wo, wi, alpha) /
-             (4.0 * wo.z);
+        f += mirror * c.mirror * ggxD(normalize(wo + wi), alpha) *
+             smithG2(wo, wi, alpha) / (4.0 * wo.z);
     return f;
 }
 

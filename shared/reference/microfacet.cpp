@@ -1,12 +1,26 @@
 // Chapter 15's rough surfaces in the reference, in double, written again
 // from page 15's formulas (not from microfacet.glsl): GGX, Smith's
 // height-correlated masking, the visible normals by spherical caps, how one
-// facet divides the light, and the lights' glints.
+// facet divides the light, and the lights' glints. The compensation of
+// multiple scattering reads the build's albedo table with the GPU's own
+// interpolation (albedo_table.glsl as C++): the table is the rule, and
+// test_microfacet and the white furnace check it against physics.
 #include "reference/ray_tree.h"
 #include "reference/sampling.h"
+#include "scene/microfacet_albedo.h"
 
 #include <algorithm>
 #include <cmath>
+
+namespace shader {
+namespace {
+using namespace glm;
+using uint = std::uint32_t;
+#define ALBEDO_TABLE(i) rg::kMicrofacetAlbedo[i]
+#include "albedo_table.glsl"
+#undef ALBEDO_TABLE
+}  // namespace
+}  // namespace shader
 
 namespace rg::ref {
 namespace {
@@ -33,6 +47,22 @@ void frameOf(const glm::dvec3& ns, glm::dvec3& t, glm::dvec3& b) {
     double a = -1 / (s + ns.z), c = ns.x * ns.y * a;
     t = glm::dvec3(1 + s * ns.x * ns.x * a, s * c, -s * ns.x);
     b = glm::dvec3(c, s + ns.y * ns.y * a, -ns.y);
+}
+
+// Turquin's (2019) factors on the dielectric's and the mirror's lobes
+// (rough_surface.glsl's compensation): 1 / E and 1 + R (1 - E) / E.
+struct Compensation {
+    double dielectric = 1, mirror = 1;
+};
+Compensation compensation(const ReferenceSettings& settings, const Material& m,
+                          double alpha, double n1, double n2, double cosO) {
+    if (!settings.multipleScattering) return {};
+    float roughness = float(std::sqrt(alpha));
+    double kept = std::max<double>(
+        shader::dielectricAlbedo(float(cosO), roughness, float(n1), float(n2)), 0.05);
+    double keptMirror =
+        std::max<double>(shader::mirrorAlbedo(float(cosO), roughness), 0.05);
+    return {1 / kept, 1 + m.reflectivity * (1 - keptMirror) / keptMirror};
 }
 
 }  // namespace
@@ -71,12 +101,13 @@ RoughBranches roughBranches(const ReferenceSettings& settings, const Material& m
     double cosR = glm::dot(r.reflected, ns);
     double masking =
         cosR > 0 ? (1 / (1 + lambda(wo.z, alpha) + lambda(cosR, alpha))) / g1 : 0;
-    r.reflectedShare = m.transmission * F * masking +
-                       (1 - m.transmission) * m.reflectivity * masking;
+    Compensation c = compensation(settings, m, alpha, n1, n2, wo.z);
+    r.reflectedShare = m.transmission * c.dielectric * F * masking +
+                       (1 - m.transmission) * m.reflectivity * c.mirror * masking;
     if (refractDirection(direction, mw, n1, n2, r.refracted)) {
         double cosT = glm::dot(r.refracted, ns);
         if (cosT < 0)
-            r.refractedShare = m.transmission * (1 - F) *
+            r.refractedShare = m.transmission * c.dielectric * (1 - F) *
                                (1 / (1 + lambda(wo.z, alpha) + lambda(cosT, alpha))) / g1;
     }
     // the flat triangle decides the sides (meshes)
@@ -90,12 +121,14 @@ double roughLobe(const ReferenceSettings& settings, const Material& m, double al
                  const glm::dvec3& l) {
     double cosO = std::max(glm::dot(v, ns), 1e-6), cosI = glm::dot(l, ns);
     double g2 = 1 / (1 + lambda(cosO, alpha) + lambda(cosI, alpha));
+    Compensation c = compensation(settings, m, alpha, n1, n2, cosO);
     if (cosI > 0) {  // reflection: F D G2 / (4 cos_o), the dielectric and the mirror
         glm::dvec3 h = glm::normalize(v + l);
         double F = referenceFresnel(settings.fresnelMode, m.f0, glm::dot(v, h), n1, n2);
         double d = ggx(glm::dot(h, ns), alpha);
-        return (m.transmission * F + (1 - m.transmission) * m.reflectivity) * d * g2 /
-               (4 * cosO);
+        return (m.transmission * c.dielectric * F +
+                (1 - m.transmission) * m.reflectivity * c.mirror) *
+               d * g2 / (4 * cosO);
     }
     // transmission (Walter et al. 2007, eq. 21, times |cos_i|)
     glm::dvec3 h = -(n1 * v + n2 * l);
@@ -106,8 +139,8 @@ double roughLobe(const ReferenceSettings& settings, const Material& m, double al
     if (om <= 0 || im >= 0) return 0;
     double F = referenceFresnel(settings.fresnelMode, m.f0, om, n1, n2);
     double denominator = n1 * om + n2 * im;
-    return m.transmission * (1 - F) * ggx(glm::dot(h, ns), alpha) * g2 * om * -im * n2 *
-           n2 / (cosO * denominator * denominator);
+    return m.transmission * c.dielectric * (1 - F) * ggx(glm::dot(h, ns), alpha) * g2 *
+           om * -im * n2 * n2 / (cosO * denominator * denominator);
 }
 
 }  // namespace rg::ref

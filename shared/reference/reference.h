@@ -84,6 +84,9 @@ struct ReferenceSettings {
     // Chapter 14's --caustics transmit: shadow rays pass glass unbent, keeping
     // 1 - F at each surface and Beer-Lambert between (and no photons).
     bool transmitShadows = false;
+    // Chapter 15's --multiple-scattering: rough lobes compensated with the
+    // albedo table (scene/microfacet_albedo.h), as rough_surface.glsl does.
+    bool multipleScattering = false;
 };
 
 class ReferencePhotons;
