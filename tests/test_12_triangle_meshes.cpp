@@ -556,6 +556,7 @@ TEST(Meshes, GltfMaterialRoundTrip) {
     EXPECT_NEAR(m.kd.g, 0.4 * 0.75 * 0.25, 1e-12);  // base (1 - metallic) (1 - transmission)
     EXPECT_NEAR(m.reflectivity, 0.25 * 0.25, 1e-12);
     EXPECT_EQ(m.transmission, 0.75);
+    EXPECT_EQ(m.roughness, 0.5);  // glass is rough by its roughnessFactor (frosted: chapter 15)
     EXPECT_FALSE(m.thin);
     EXPECT_EQ(m.ior, 1.33);
     EXPECT_NEAR(m.f0, std::pow(0.33 / 2.33, 2), 1e-12);

@@ -8,7 +8,9 @@
 // - against the CPU reference, which draws the same facets (the camera's
 //   ray trees; photons are random on the GPU);
 // - what the page says the default scene shows: the frosted balls spread
-//   the sun's caustic that the clear ball focuses.
+//   the sun's caustic that the clear ball focuses;
+// - glTF's roughness on a transmissive material frosts it, and a
+//   metal-roughness texture etches it (smooth and rough halves).
 #include "harness.h"
 
 #include <algorithm>
@@ -18,6 +20,8 @@
 
 #include "core/display.h"
 #include "core/image.h"
+#include "gltf_square.h"
+#include "optics_image.h"
 
 namespace {
 
@@ -196,5 +200,58 @@ TEST(Chapter15, FrostedGlassSpreadsTheCaustic) {
     EXPECT_GT(clearPeak, 1.5 * frostedPeak) << "the clear ball focuses, the frosted one spreads";
     EXPECT_GT(frostedLit, 0) << "the frosted ball's shadow is lit";
 }
+
+// [region etched]
+// Etched glass from a glTF file: a square of glass (KHR_materials_transmission,
+// a volume behind it: KHR_materials_volume) whose metal-roughness texture
+// is 0 on its left half and 1 on its right, times roughnessFactor 0.6, in
+// front of a sky of vertical stripes. Through the smooth half the stripes
+// stay sharp; through the etched half (roughness 0.6) they blur into grey.
+// Read across the columns of each half, averaged down the square.
+TEST(Chapter15, GltfRoughnessEtchesTransmission) {
+    std::string dir = rgtest::outputDir("15_etched");
+    // stripes 4 texels wide (1.4 degrees) over +-45 degrees about -z
+    rgtest::optics::writeRampSky(dir + "/sky.png", 1024, 256, [](int x, int y) {
+        return x >= 384 && x < 640 && y >= 96 && y < 160 && (x / 4) % 2 == 0 ? 255 : -1;
+    });
+    rg::FloatImage halves{2, 1, {0, 0, 0, 1, 0, 1, 0, 1}};  // roughness in G
+    rg::writePng(dir + "/etch.png", halves);
+    nlohmann::json material = {
+        {"name", "etched"},
+        {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}},
+        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                        {"KHR_materials_ior", {{"ior", 1.5}}},
+                        {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}}};
+    writeSquareGltf(dir, "pane", wall(1.0f), material, {{"metallicRoughnessTexture", "etch.png"}},
+                    {{"magFilter", 9728}, {"minFilter", 9728}});  // nearest: two clean halves
+    nlohmann::json scene = {
+        {"camera", {{"position", {0, 0, 5}}, {"look_at", {0, 0, 0}}, {"fov_y_deg", 20}}},
+        {"sky", {{"image", "sky.png"}}},
+        {"lights", nlohmann::json::array()},
+        {"materials", {{"unused", nlohmann::json::object()}}},
+        {"objects", {{{"type", "mesh"}, {"file", "pane.gltf"}}}}};
+    const int size = 96;
+    rg::FloatImage image = render(RG_EXE_15, writeScene(dir, "etched", scene), dir + "/etched", size, size,
+                                  {"--frames", "64", "--caustics", "off"});
+    // The square fills the picture (half-width 1 at 5; the view's is 5 tan 10 degrees = 0.88),
+    // its halves left and right of the middle column.
+    auto contrast = [&](int x0, int x1) {
+        std::vector<double> columns;
+        for (int x = x0; x < x1; ++x) {
+            double sum = 0;
+            for (int y = 28; y < 68; ++y) sum += channel(image, x, y, 1);
+            columns.push_back(sum / 40);
+        }
+        double mean = 0, var = 0;
+        for (double c : columns) mean += c / columns.size();
+        for (double c : columns) var += (c - mean) * (c - mean) / columns.size();
+        return std::sqrt(var) / std::max(mean, 1e-6);
+    };
+    double smooth = contrast(24, 46), etched = contrast(50, 72);
+    std::printf("stripes through the glass, spread over mean: smooth half %.3f, etched half %.3f\n", smooth, etched);
+    EXPECT_GT(smooth, 0.5) << "the smooth half shows the stripes";
+    EXPECT_LT(etched, 0.3 * smooth) << "the etched half blurs them";
+}
+// [end]
 
 }  // namespace

@@ -66,7 +66,7 @@ void applyMetalRoughness(inout GpuMaterial m, vec3 baseColor, float metallic,
     m.params.x = min(1e6, max(1.0, 2.0 / (alpha * alpha) - 2.0));  // shininess
     m.ks.rgb = vec3(0.04 * (1.0 - roughness));
     m.params.y = metallic * (1.0 - transmission);                   // reflectivity
-    m.extra.y = transmission > 0.0 ? 0.0 : roughness * metallic;    // rough lobe
+    m.extra.y = transmission > 0.0 ? roughness : roughness * metallic;  // rough lobe
 }
 // [end]
 

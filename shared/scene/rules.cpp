@@ -23,7 +23,9 @@ double smallestStretch(const glm::dmat4& m) {
 // glTF's metal-roughness material (glTF 2.0, 3.9.2) in RayGlass's terms:
 // the base colour is diffuse where the surface is neither metal nor glass;
 // metal is an untinted mirror of that strength, rough by its roughness (ch
-// 11); the highlight narrows as the roughness falls (Blinn-Phong's exponent
+// 11); glass is rough by its roughness too (KHR_materials_transmission:
+// the same microfacets reflect and transmit; ch 15's frosted glass); the
+// highlight narrows as the roughness falls (Blinn-Phong's exponent
 // 2 / alpha^2 - 2 for GGX's alpha = roughness^2).
 void applyMetalRoughness(Material& m, const glm::dvec3& baseColor, double metallic,
                          double roughness, double transmission) {
@@ -34,8 +36,8 @@ void applyMetalRoughness(Material& m, const glm::dvec3& baseColor, double metall
     m.shininess = std::min(1e6, std::max(1.0, 2 / (alpha * alpha) - 2));
     m.ks = glm::dvec3(0.04 * (1 - roughness));
     m.reflectivity = metallic * (1 - transmission);
-    // rough reflection only for metal (ch 11)
-    m.roughness = transmission > 0 ? 0.0 : roughness * metallic;
+    // rough: metal, and glass (not a dielectric's diffuse base)
+    m.roughness = transmission > 0 ? roughness : roughness * metallic;
 }
 // [end]
 
