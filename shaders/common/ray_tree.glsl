@@ -234,7 +234,7 @@ void growBranch() {
         rough = roughSplit(m, alpha, n1, n2, n, ns, b.direction,
                            branchSample(b.depth, path));
         tree.radiance += throughput * roughGlint(m, alpha, n1, n2, p, e, n, ns,
-                                                 -b.direction, tree.rays);
+                                                 -b.direction, throughput, tree.rays);
         s.reflected = rough.reflectedShare, s.refracted = rough.refractedShare;
         s.highlight = s.local;
     }

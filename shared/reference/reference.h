@@ -203,11 +203,12 @@ public:
                            const glm::dvec3& n, const glm::dvec3& ns, const glm::dvec3& v,
                            double local, double highlight) const;
     // Chapter 15: the lights' glints on a rough surface of roughness^2 alpha
-    // between indices n1 and n2 (ray_tree.h's roughLobe toward each light).
+    // between indices n1 and n2 (ray_tree.h's roughLobe toward each light),
+    // those that add at least 1e-4 to the pixel through `throughput`.
     glm::dvec3 roughGlints(const ReferenceSettings& settings, const Material& m,
                            double alpha, double n1, double n2, const glm::dvec3& p,
                            double error, const glm::dvec3& n, const glm::dvec3& ns,
-                           const glm::dvec3& v) const;
+                           const glm::dvec3& v, const glm::dvec3& throughput) const;
     // True when nothing lies between `from` and the sun, in direction l.
     bool sunVisible(const glm::dvec3& from, const glm::dvec3& l) const;
     // --caustics transmit: what passes from `from` along unit l up to tMax,

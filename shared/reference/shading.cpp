@@ -99,7 +99,8 @@ glm::dvec3 ReferenceRenderer::roughGlints(const ReferenceSettings& settings,
                                           const Material& m, double alpha, double n1,
                                           double n2, const glm::dvec3& p, double error,
                                           const glm::dvec3& n, const glm::dvec3& ns,
-                                          const glm::dvec3& v) const {
+                                          const glm::dvec3& v,
+                                          const glm::dvec3& throughput) const {
     glm::dvec3 color(0);
     for (const PointLight& light : scene_.lights) {
         bool sun = light.kind == PointLight::Kind::Directional;
@@ -110,7 +111,8 @@ glm::dvec3 ReferenceRenderer::roughGlints(const ReferenceSettings& settings,
         glm::dvec3 E =
             sun ? light.irradiance : light.intensity / glm::dot(toLight, toLight);
         glm::dvec3 added = roughLobe(settings, m, alpha, n1, n2, ns, v, l) * E;
-        if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
+        glm::dvec3 seen = added * throughput;  // what it adds to the pixel
+        if (std::max({seen.r, seen.g, seen.b}) < 1e-4) continue;  // as MIN_LIGHT
         glm::dvec3 from = secondaryOrigin(p, error, behind ? -n : n);
         bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
         if (visible) color += added;
@@ -256,7 +258,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
             branchSample(branch.seed, branch.accumulated, uint32_t(depth), branch.path));
         reflected = rough.reflectedShare, refracted = rough.refractedShare;
         color +=
-            roughGlints(settings, m, alpha, split.n1, split.n2, p, hit.error, n, ns, v);
+            roughGlints(settings, m, alpha, split.n1, split.n2, p, hit.error, n, ns, v,
+                        arriving);
         split.highlight = split.local;
     }
     if (settings.stage >= ReferenceStage::Caustics) {
