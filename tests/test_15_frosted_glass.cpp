@@ -6,7 +6,8 @@
 //   compensation of multiple scattering they keep it;
 // - the smooth limit: roughness 1e-4 renders as chapter 14's smooth glass;
 // - against the CPU reference, which draws the same facets (the camera's
-//   ray trees; photons are random on the GPU);
+//   ray trees); photons, random on the GPU, against its dense grid of them
+//   at a fixed radius;
 // - what the page says the default scene shows: the frosted balls spread
 //   the sun's caustic that the clear ball focuses;
 // - glTF's roughness on a transmissive material frosts it, and a
@@ -170,6 +171,44 @@ TEST(Chapter15, SmoothLimitIsChapter14) {
 // frame after frame) with its own model written in double.
 TEST(Chapter15, MatchesTheReferenceWhereItDrawsTheSameFacets) {
     rgtest::expectMatchesReference(RG_EXE_15, "", "15_reference", {"--frames", "4", "--caustics", "off"});
+}
+// [end]
+
+// [region photon_reference]
+// Photons through rough glass against the reference, whose photons come
+// from a dense grid (each with a facet of its own hash) where the GPU's
+// draw theirs at random: both gather with one fixed radius, so their
+// caustic light converges to the same picture. The caustic light is each
+// picture less the same frames without photons (the camera rays' part is
+// the same facets in both); compared in bands of 20 columns, the total
+// and every band holding a tenth of it.
+TEST(Chapter15, PhotonsThroughRoughGlassMatchTheReference) {
+    std::string dir = rgtest::outputDir("15_photon_reference");
+    std::vector<std::string> common = {"--frames", "16", "--radius", "0.05", "--alpha", "1"};
+    std::vector<std::string> photons = common;
+    photons.insert(photons.end(), {"--photons", "200000", "--reference", "--reference-photons", "400"});
+    rg::FloatImage gpu = render(RG_EXE_15, "", dir + "/photons", 160, 90, photons);
+    rg::FloatImage reference = rg::readPfm(dir + "/photons_reference.pfm");
+    common.insert(common.end(), {"--caustics", "off"});
+    rg::FloatImage off = render(RG_EXE_15, "", dir + "/off", 160, 90, common);
+    ASSERT_EQ(reference.rgba.size(), gpu.rgba.size());
+    std::vector<double> bandGpu(8, 0), bandReference(8, 0);
+    for (int y = 0; y < 90; ++y)
+        for (int x = 0; x < 160; ++x)
+            for (int c = 0; c < 3; ++c) {
+                bandGpu[x / 20] += channel(gpu, x, y, c) - channel(off, x, y, c);
+                bandReference[x / 20] += channel(reference, x, y, c) - channel(off, x, y, c);
+            }
+    double totalGpu = 0, totalReference = 0;
+    for (int b = 0; b < 8; ++b) totalGpu += bandGpu[b], totalReference += bandReference[b];
+    std::printf("caustic light, GPU / reference: total %.4f", totalGpu / totalReference);
+    EXPECT_NEAR(totalGpu / totalReference, 1.0, 0.01);
+    for (int b = 0; b < 8; ++b) {
+        if (bandReference[b] < 0.1 * totalReference) continue;
+        std::printf(", columns %d-%d %.4f", 20 * b, 20 * b + 19, bandGpu[b] / bandReference[b]);
+        EXPECT_NEAR(bandGpu[b] / bandReference[b], 1.0, 0.02) << "columns " << 20 * b;
+    }
+    std::printf("\n");
 }
 // [end]
 
