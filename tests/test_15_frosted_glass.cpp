@@ -174,6 +174,70 @@ TEST(Chapter15, MatchesTheReferenceWhereItDrawsTheSameFacets) {
 }
 // [end]
 
+// [region sweep]
+// frosted_sweep.json, what page 15 says it shows: five balls of one glass
+// with roughness 0, 0.1, 0.2, 0.4 and 0.8 from left to right. The tiles
+// seen through a ball lose their contrast as the roughness grows, and the
+// caustic each ball throws toward the camera is bright behind the three
+// smoothest and fades to almost nothing behind the roughest. Positions
+// come from the scene: each ball's centre, and where the sun's ray
+// through it meets the floor, projected by the scene's camera.
+TEST(Chapter15, SweepFromSmoothToRough) {
+    std::string dir = rgtest::outputDir("15_sweep");
+    std::string path = RG_SOURCE_DIR "/assets/scenes/frosted_sweep.json";
+    nlohmann::json scene = rgtest::readJson(path);
+    const int width = 320, height = 180;
+    rg::FloatImage image = render(RG_EXE_15, path, dir + "/sweep", width, height, {"--frames", "32"});
+    auto vec = [](const nlohmann::json& j) { return glm::dvec3(j[0], j[1], j[2]); };
+    glm::dvec3 eye = vec(scene["camera"]["position"]);
+    glm::dvec3 forward = glm::normalize(vec(scene["camera"]["look_at"]) - eye);
+    glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
+    glm::dvec3 up = glm::cross(right, forward);
+    double tanHalf = std::tan(glm::radians(double(scene["camera"]["fov_y_deg"])) / 2);
+    auto project = [&](glm::dvec3 p) {  // to pixel coordinates, top row first
+        glm::dvec3 d = p - eye;
+        double z = glm::dot(d, forward);
+        return glm::dvec2((glm::dot(d, right) / z / (tanHalf * width / height) + 1) / 2 * width,
+                          (1 - glm::dot(d, up) / z / tanHalf) / 2 * height);
+    };
+    glm::dvec3 sun = glm::normalize(vec(scene["lights"][0]["direction"]));
+    std::vector<double> contrast, peak;
+    for (size_t i = 1; i < scene["objects"].size(); ++i) {
+        const nlohmann::json& ball = scene["objects"][i];
+        glm::dvec3 centre = vec(ball["center"]);
+        glm::dvec2 c = project(centre);
+        int r = int(std::abs(project(centre + double(ball["radius"]) * right).x - c.x));
+        // the view through the ball: luminance's spread over its mean, the inner half
+        double sum = 0, sumSq = 0;
+        int n = 0;
+        for (int y = int(c.y) - r / 2; y < int(c.y) + r / 2; ++y)
+            for (int x = int(c.x) - r / 2; x < int(c.x) + r / 2; ++x) {
+                double v = (channel(image, x, y, 0) + channel(image, x, y, 1) + channel(image, x, y, 2)) / 3;
+                sum += v, sumSq += v * v, ++n;
+            }
+        double mean = sum / n;
+        contrast.push_back(std::sqrt(std::max(0.0, sumSq / n - mean * mean)) / mean);
+        // the caustic: the brightest green within 1.2 radii of the sun's ray's foot
+        glm::dvec2 foot = project(centre + sun * (-centre.y / sun.y));
+        int b = int(1.2 * r);
+        double brightest = 0;
+        for (int y = std::max(0, int(foot.y) - b); y < std::min(height, int(foot.y) + b); ++y)
+            for (int x = std::max(0, int(foot.x) - b); x < std::min(width, int(foot.x) + b); ++x)
+                brightest = std::max(brightest, channel(image, x, y, 1));
+        peak.push_back(brightest);
+        std::printf("%s: contrast through it %.3f, caustic peak %.2f\n",
+                    std::string(ball["material"]).c_str(), contrast.back(), peak.back());
+    }
+    ASSERT_EQ(contrast.size(), 5u);
+    EXPECT_GT(contrast[0], contrast[1]);
+    EXPECT_GT(contrast[0], contrast[2]);
+    EXPECT_GT(contrast[2], contrast[3]);
+    EXPECT_GT(contrast[0], 2 * contrast[4]) << "the roughest ball blurs the tiles";
+    for (int i = 0; i < 3; ++i) EXPECT_GT(peak[i], 5 * peak[4]) << "ball " << i << "'s caustic is bright";
+    EXPECT_GT(peak[3], peak[4]) << "the caustic fades with roughness";
+}
+// [end]
+
 // [region photon_reference]
 // Photons through rough glass against the reference, whose photons come
 // from a dense grid (each with a facet of its own hash) where the GPU's
