@@ -223,7 +223,9 @@ RG_SIZE(GpuMaterial, 192);
 
 struct GpuLight {
     vec4 position;   // xyz; w: LIGHT_* (a directional light: where its light travels)
-    vec4 intensity;  // the thesis's I_i; chapter 14: W/sr, or a sun's irradiance (W/m^2)
+    // the thesis's I_i; chapter 14: W/sr, or a sun's irradiance (W/m^2) and in w
+    // its angular radius (radians)
+    vec4 intensity;
 };
 RG_SIZE(GpuLight, 32);
 #define LIGHT_POINT 1.0        // position.w: a point light

@@ -61,18 +61,24 @@ void emitPhoton(out vec3 origin, out vec3 direction, out vec3 power) {
         direction = light.position.xyz;
         mat3 frame = basisAround(direction);  // sampling.glsl
         vec3 t = frame[0], b = frame[1];
-        float radius = e.target.w * sqrt(v.x), phi = 2.0 * kPi * v.y;
+        // a sun with a disc tilts each photon by up to its angular radius:
+        // the beam widens by as much across the target's depth
+        float grow = 1.0 + tan(light.intensity.w);
+        float radius = e.target.w * grow * sqrt(v.x), phi = 2.0 * kPi * v.y;
         vec3 x = e.target.xyz + radius * (cos(phi) * t + sin(phi) * b);
         for (uint j = 0u; j < count; ++j) {
             PhotonEmitter o = emitters.emitters[j];
             if (o.light != e.light) continue;
             vec3 off = x - o.target.xyz;
             off -= direction * dot(off, direction);  // across the beam
+            float r = o.target.w * grow;
             // the emitter drawn from always counts: rounding may put a point
             // drawn on its rim outside it (density 0, a photon of infinite power)
-            if (j == k || dot(off, off) < o.target.w * o.target.w)
-                density += o.probability / (kPi * o.target.w * o.target.w);
+            if (j == k || dot(off, off) < r * r)
+                density += o.probability / (kPi * r * r);
         }
+        if (light.intensity.w > 0.0)  // through x from a point of the sun's disc
+            direction = -towardSun(light, vec2(random(), random()));
         origin = x - direction * e.backoff;
     } else {
         // a direction of the cone, uniformly over its solid angle

@@ -7,6 +7,7 @@
 // hemisphere kd E, never more than arrived).
 #ifndef RADIOMETRY_GLSL
 #define RADIOMETRY_GLSL
+#include "sampling.glsl"
 
 // --caustics transmit: the shadow ray's payload, what the glass on its way
 // lets through (transmit.glsl)
@@ -35,6 +36,30 @@ bool sunVisible(vec3 origin, vec3 l) {
     return shadowPayload == 0u;
 }
 
+// [region sun_disc]
+// Toward a light from p. A sun with a disc (its angular radius in
+// intensity.w; the real one's is 0.27 degrees) is a direction drawn
+// uniformly over the disc's solid angle, a new one each frame at each
+// point: a point in the penumbra sees part of the disc, and the frames'
+// average is that part (a soft shadow's edge). The disc's radiance times
+// its solid angle is the sun's irradiance, so E stays as it was.
+vec3 towardSun(GpuLight sun, vec2 u) {  // u in [0,1)^2
+    vec3 axis = -sun.position.xyz;
+    float cosine = 1.0 - u.x * (1.0 - cos(sun.intensity.w));
+    float sine = sqrt(max(0.0, 1.0 - cosine * cosine)), phi = 2.0 * kPi * u.y;
+    mat3 frame = basisAround(axis);
+    return normalize(cosine * axis + sine * (cos(phi) * frame[0] + sin(phi) * frame[1]));
+}
+vec3 towardLight(GpuLight light, vec3 p) {
+    if (light.position.w != LIGHT_DIRECTIONAL)
+        return safeNormalize(light.position.xyz - p);
+    if (light.intensity.w <= 0.0) return -light.position.xyz;
+    uvec3 bits = floatBitsToUint(p);  // the point and the frame choose
+    uint h = pcgHash(bits.x ^ pcgHash(bits.y ^ pcgHash(bits.z ^ pcgHash(push.frame))));
+    return towardSun(light, vec2(toUnit(h), toUnit(pcgHash(h))));
+}
+// [end]
+
 // [region direct]
 // The local model of chapter 09 (the shares `local` and `highlight`), in
 // radiometric terms: Lambert's kd / pi, and Blinn-Phong's lobe normalized
@@ -47,7 +72,7 @@ vec3 directLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
     for (uint i = 0u; i < camera.counts.z; ++i) {
         bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
         vec3 toLight = lights[i].position.xyz - p;
-        vec3 l = sun ? -lights[i].position.xyz : safeNormalize(toLight);
+        vec3 l = towardLight(lights[i], p);
         float cosine = dot(ns, l);
         if (cosine <= 0.0) continue;
         // E on a surface facing the light: I / r^2, or the sun's

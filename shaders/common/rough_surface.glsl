@@ -152,7 +152,7 @@ vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float er
     for (uint i = 0u; i < camera.counts.z; ++i) {
         bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
         vec3 toLight = lights[i].position.xyz - p;
-        vec3 l = sun ? -lights[i].position.xyz : safeNormalize(toLight);
+        vec3 l = towardLight(lights[i], p);
         vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
         bool behind = dot(l, n) < 0.0;
         if (behind != (wi.z < 0.0)) continue;  // between the two normals: neither side

@@ -70,6 +70,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         if (!chapter.meshes) refuseMeshes(scene);
         if (chapter.physicalLights) {
             requirePhysicalLights(scene);
+            if (opts.reference) refuseSunDiscInReference(scene);
             if (!scene.ambientGiven) scene.ambient = glm::dvec3(0);  // radiometry: none
         } else {
             refusePhysicalLights(scene);

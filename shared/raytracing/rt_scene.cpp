@@ -133,8 +133,10 @@ static_assert(uint32_t(Glass::Diamond) == GLASS_DIAMOND &&
 std::vector<gpu::GpuLight> toGpuLights(const Scene& scene) {
     std::vector<gpu::GpuLight> lights;
     for (const auto& l : scene.lights) {
-        if (l.kind == PointLight::Kind::Directional)  // chapter 14's sun
-            lights.push_back({v4(l.direction, LIGHT_DIRECTIONAL), v4(l.irradiance)});
+        glm::vec3 irradiance(l.irradiance);
+        if (l.kind == PointLight::Kind::Directional)  // chapter 14's sun, its disc in w
+            lights.push_back({v4(l.direction, LIGHT_DIRECTIONAL),
+                              glm::vec4(irradiance, float(l.angularRadius))});
         else
             lights.push_back({v4(l.position, LIGHT_POINT), v4(l.intensity)});
     }

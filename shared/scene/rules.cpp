@@ -100,6 +100,14 @@ void refusePhysicalLights(const Scene& scene) {
                              "chapter 14; run 14_caustics");
 }
 
+void refuseSunDiscInReference(const Scene& scene) {
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].angularRadius > 0)
+            throw InputError(scene.path + ": lights[" + std::to_string(i) +
+                             "].angular_radius_deg: the CPU reference (--reference) "
+                             "takes the sun as a point; leave out one or the other");
+}
+
 void requirePhysicalLights(const Scene& scene) {
     for (size_t i = 0; i < scene.lights.size(); ++i)
         if (scene.lights[i].kind == PointLight::Kind::Thesis)

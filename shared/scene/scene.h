@@ -40,6 +40,8 @@ struct PointLight {
     glm::dvec3 intensity{1, 1, 1};  // Thesis: I_i; Point: radiant intensity, W/sr
     glm::dvec3 direction{0, -1, 0};  // Directional: where its light travels (unit)
     glm::dvec3 irradiance{0};        // Directional: W/m^2 on a surface facing it
+    // Directional: the sun's disc, its angular radius (radians; 0: a point)
+    double angularRadius = 0;
 };
 
 // Chapter 13: the glasses with a measured dispersion (host_device.h's GLASS_*).
@@ -191,6 +193,8 @@ void refusePhysicalLights(const Scene& scene);
 // Chapter 14 lights in physical units only: throws InputError naming the
 // first light given the thesis's way ("intensity" without units).
 void requirePhysicalLights(const Scene& scene);
+// Chapter 14's --reference: a sun with a disc (angular_radius_deg) is refused.
+void refuseSunDiscInReference(const Scene& scene);
 
 // Chapter 13's medium stack holds material indices in 8 bits (media.glsl):
 // throws InputError naming the first transmitting material past index 254.

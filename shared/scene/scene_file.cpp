@@ -172,7 +172,9 @@ Scene loadScene(const std::string& path) {
                 // Chapter 14: a sun, far enough that its rays are parallel.
                 if (r.string(l["type"], key + ".type") != "directional")
                     r.fail(key + ".type", "must be \"point\" or \"directional\"");
-                r.onlyKeys(l, key, {"type", "direction", "irradiance", "comment"});
+                r.onlyKeys(l, key,
+                           {"type", "direction", "irradiance", "angular_radius_deg",
+                            "comment"});
                 light.kind = PointLight::Kind::Directional;
                 if (!l.contains("direction")) r.fail(key + ".direction", "missing");
                 glm::dvec3 d = r.vec3(l["direction"], key + ".direction");
@@ -180,6 +182,11 @@ Scene loadScene(const std::string& path) {
                 light.direction = glm::normalize(d);
                 if (!l.contains("irradiance")) r.fail(key + ".irradiance", "missing");
                 light.irradiance = r.vec3(l["irradiance"], key + ".irradiance", 0, kHuge);
+                // the real sun's is 0.27 degrees
+                std::string disc = key + ".angular_radius_deg";
+                if (l.contains("angular_radius_deg"))
+                    light.angularRadius =
+                        glm::radians(r.number(l["angular_radius_deg"], disc, 0, 10));
                 s.lights.push_back(light);
                 continue;
             }
