@@ -280,6 +280,7 @@ TEST(Chapter14, SunDiscCastsTheGeometricPenumbra) {
     const int size = 96;
     std::string path = writeScene(dir, "disc", scene);
     Rendered run = render(path, dir + "/disc", size, size, {"--frames", "256", "--caustics", "off"});
+    EXPECT_TRUE(run.report.value("sun_discs", false)) << "the disc's code compiled in (kSunDiscs)";
     // the part of the disc a floor point q sees: directions uniform over the disc's solid angle
     auto seen = [&](glm::dvec3 q) {
         const int rings = 200, spokes = 250;

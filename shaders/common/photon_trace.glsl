@@ -63,7 +63,7 @@ void emitPhoton(out vec3 origin, out vec3 direction, out vec3 power) {
         vec3 t = frame[0], b = frame[1];
         // a sun with a disc tilts each photon by up to its angular radius:
         // the beam widens by as much across the target's depth
-        float grow = 1.0 + tan(light.intensity.w);
+        float grow = kSunDiscs ? 1.0 + tan(light.intensity.w) : 1.0;
         float radius = e.target.w * grow * sqrt(v.x), phi = 2.0 * kPi * v.y;
         vec3 x = e.target.xyz + radius * (cos(phi) * t + sin(phi) * b);
         for (uint j = 0u; j < count; ++j) {
@@ -77,7 +77,7 @@ void emitPhoton(out vec3 origin, out vec3 direction, out vec3 power) {
             if (j == k || dot(off, off) < r * r)
                 density += o.probability / (kPi * r * r);
         }
-        if (light.intensity.w > 0.0)  // through x from a point of the sun's disc
+        if (kSunDiscs && light.intensity.w > 0.0)  // through x from a point of the disc
             direction = -towardSun(light, vec2(random(), random()));
         origin = x - direction * e.backoff;
     } else {

@@ -53,7 +53,7 @@ vec3 towardSun(GpuLight sun, vec2 u) {  // u in [0,1)^2
 vec3 towardLight(GpuLight light, vec3 p) {
     if (light.position.w != LIGHT_DIRECTIONAL)
         return safeNormalize(light.position.xyz - p);
-    if (light.intensity.w <= 0.0) return -light.position.xyz;
+    if (!kSunDiscs || light.intensity.w <= 0.0) return -light.position.xyz;
     uvec3 bits = floatBitsToUint(p);  // the point and the frame choose
     uint h = pcgHash(bits.x ^ pcgHash(bits.y ^ pcgHash(bits.z ^ pcgHash(push.frame))));
     return towardSun(light, vec2(toUnit(h), toUnit(pcgHash(h))));

@@ -51,6 +51,9 @@ layout(constant_id = 5) const bool kThinWalls = true;
 // scene with a mip-mapped texture (chapter 12): rays then carry their cone
 // (raygen_common.glsl's traceClosest) and hits choose a level (mesh.rchit).
 layout(constant_id = 6) const bool kRayCones = false;
+// Specialization constant 7 (rt_pipeline.h's sunDiscs): true only for a
+// scene with a sun of some size (radiometry.glsl's towardLight, chapter 14).
+layout(constant_id = 7) const bool kSunDiscs = false;
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 3.0e38;

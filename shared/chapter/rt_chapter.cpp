@@ -115,6 +115,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         bool thinWalls = useThinWalls(shaders, scene);
         // rays carry their cones where a texture has mip levels (chapter 12)
         bool rayCones = useRayCones(shaders, scene);
+        // a sun's disc is drawn from only where a sun has one (chapter 14)
+        bool sunDiscs = useSunDiscs(shaders, scene);
         if (chapter.adaptShaders) chapter.adaptShaders(shaders, scene);  // chapter 14
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
@@ -227,7 +229,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                 {"numerics", toJson(careful)},
                                 {"alpha_test", alphaTest},
                                 {"thin_walls", thinWalls},
-                                {"ray_cones", rayCones}};
+                                {"ray_cones", rayCones},
+                                {"sun_discs", sunDiscs}};
         if (pass.finish) extra.update(pass.finish());
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},

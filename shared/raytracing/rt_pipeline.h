@@ -40,6 +40,8 @@ struct RtShaders {
     uint32_t thinWalls = 1;
     // Constant 6, kRayCones: 1 for a scene with a mip-mapped texture.
     uint32_t rayCones = 0;
+    // Constant 7, kSunDiscs: 1 for a scene with a sun of some size (chapter 14).
+    uint32_t sunDiscs = 0;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder

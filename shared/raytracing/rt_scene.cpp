@@ -261,6 +261,13 @@ void keepLevelZero(Scene& scene) {
     }
 }
 
+bool useSunDiscs(RtShaders& shaders, const Scene& scene) {
+    bool any = false;
+    for (const PointLight& light : scene.lights) any = any || light.angularRadius > 0;
+    shaders.sunDiscs = any;
+    return any;
+}
+
 bool useRayCones(RtShaders& shaders, const Scene& scene) {
     bool any = false;
     for (const auto& texture : scene.textures) any = any || texture->levels.size() > 1;

@@ -69,6 +69,10 @@ bool useThinWalls(RtShaders& shaders, const Scene& scene);
 // carry their cones where a texture has more than one level. Returns whether.
 void keepLevelZero(Scene& scene);
 bool useRayCones(RtShaders& shaders, const Scene& scene);
+// Constant 7 (kSunDiscs): a sun's disc is drawn from only in a scene with a
+// sun of some size (chapter 14's angular_radius_deg): the code alone cost
+// chapter 15 10 % of a frame on an H100. Returns whether.
+bool useSunDiscs(RtShaders& shaders, const Scene& scene);
 
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)
