@@ -86,10 +86,11 @@ RoughSplit roughSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, ve
 
 // The material's microfacet lobe toward wi (local; BSDF times |cos|): its
 // dielectric part both ways, its mirror part F D G2 / (4 cos_o) on the
-// viewer's side, with no Fresnel; each compensated as its branches are.
-float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi) {
+// viewer's side, with no Fresnel; each compensated as its branches are
+// (c: compensation's factors for wo, looked up once a hit).
+float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi,
+                Compensation c) {
     float transmission = m.params.z, mirror = (1.0 - transmission) * m.params.y;
-    Compensation c = compensation(m, alpha, n1, n2, wo.z);
     float f = transmission * c.dielectric *
               dielectricCosBsdf(wo, wi, alpha, n1, n2, push.fresnelMode, m.extra.x);
     if (wi.z > 0.0 && mirror > 0.0)
@@ -106,8 +107,8 @@ float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi
 // density: the same light on average where the lobe lies inside the cone,
 // with weights that are not bounded (and nothing from outside the cone).
 float coneShare(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi,
-                float cosMax) {
-    return roughLobe(m, alpha, n1, n2, wo, wi) * 2.0 * kPi * (1.0 - cosMax);
+                float cosMax, Compensation c) {
+    return roughLobe(m, alpha, n1, n2, wo, wi, c) * 2.0 * kPi * (1.0 - cosMax);
 }
 RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
                      vec3 direction, vec2 u) {
@@ -116,15 +117,16 @@ RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec
     vec3 wo = normalize(
         vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
     float roughness = sqrt(alpha), cosMax = cos(roughness * 0.5 * kPi);
+    Compensation c = compensation(m, alpha, n1, n2, wo.z);
     RoughSplit r;
     r.reflected = lobeDirection(reflect(direction, ns), roughness, u);
     vec3 through = refract(direction, ns, n1 / n2);
     r.refracted = through == vec3(0.0) ? through : lobeDirection(through, roughness, u);
     vec3 wr = vec3(dot(r.reflected, t), dot(r.reflected, b), dot(r.reflected, ns));
     vec3 wt = vec3(dot(r.refracted, t), dot(r.refracted, b), dot(r.refracted, ns));
-    r.reflectedShare = wr.z > 0.0 ? coneShare(m, alpha, n1, n2, wo, wr, cosMax) : 0.0;
+    r.reflectedShare = wr.z > 0.0 ? coneShare(m, alpha, n1, n2, wo, wr, cosMax, c) : 0.0;
     r.refractedShare = through != vec3(0.0) && wt.z < 0.0
-                           ? coneShare(m, alpha, n1, n2, wo, wt, cosMax)
+                           ? coneShare(m, alpha, n1, n2, wo, wt, cosMax, c)
                            : 0.0;
     if (dot(r.reflected, n) <= 0.0) r.reflectedShare = 0.0;
     if (dot(r.refracted, n) >= 0.0) r.refractedShare = 0.0;
@@ -148,6 +150,7 @@ vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float er
     vec3 t = frame[0], b = frame[1];
     vec3 wo = vec3(dot(v, t), dot(v, b), max(dot(v, ns), 1e-6));
     wo = normalize(wo);
+    Compensation c = compensation(m, alpha, n1, n2, wo.z);  // for every light
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < camera.counts.z; ++i) {
         bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
@@ -156,7 +159,7 @@ vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float er
         vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
         bool behind = dot(l, n) < 0.0;
         if (behind != (wi.z < 0.0)) continue;  // between the two normals: neither side
-        float f = roughLobe(m, alpha, n1, n2, wo, wi);
+        float f = roughLobe(m, alpha, n1, n2, wo, wi, c);
         vec3 irradiance = sun ? lights[i].intensity.rgb
                               : lights[i].intensity.rgb / dot(toLight, toLight);
         vec3 light = f * irradiance, seen = light * throughput;
