@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -61,6 +62,25 @@ nlohmann::json readJson(const std::string& path) {
     EXPECT_TRUE(file.good()) << "cannot read " << path;
     if (!file) return {};
     return nlohmann::json::parse(file, nullptr, false);
+}
+
+glm::dvec3 vec3(const nlohmann::json& xyz) { return {double(xyz[0]), double(xyz[1]), double(xyz[2])}; }
+
+SceneCamera::SceneCamera(const nlohmann::json& scene, int width, int height)
+    : eye(vec3(scene["camera"]["position"])), width(width), height(height) {
+    const nlohmann::json& camera = scene["camera"];
+    forward = glm::normalize(vec3(camera["look_at"]) - eye);
+    glm::dvec3 sky = camera.contains("up") ? vec3(camera["up"]) : glm::dvec3(0, 1, 0);
+    right = glm::normalize(glm::cross(forward, sky));
+    up = glm::cross(right, forward);
+    tanHalf = std::tan(double(camera["fov_y_deg"]) * 3.14159265358979323846 / 360);
+}
+
+glm::dvec2 SceneCamera::project(const glm::dvec3& p) const {
+    glm::dvec3 d = p - eye;
+    double z = glm::dot(d, forward);
+    return {(glm::dot(d, right) / z / (tanHalf * width / height) + 1) / 2 * width,
+            (1 - glm::dot(d, up) / z / tanHalf) / 2 * height};
 }
 
 std::string outputDir(const std::string& name) {

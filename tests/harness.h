@@ -2,6 +2,7 @@
 // and the JSON report it wrote.
 #pragma once
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -49,6 +50,18 @@ void expectCleanWindowedRun(const std::string& exe, const std::string& name, int
 // Returns the report for further checks.
 nlohmann::json expectMatchesReference(const std::string& exe, const std::string& scene, const std::string& name,
                                       const std::vector<std::string>& extraArgs = {});
+
+// A scene file's pinhole camera (position, look_at, fov_y_deg, up: +y unless
+// given), as the chapters aim it: where a point lands in a width x height
+// picture, in pixel coordinates, top row first.
+struct SceneCamera {
+    SceneCamera(const nlohmann::json& scene, int width, int height);
+    glm::dvec2 project(const glm::dvec3& p) const;
+    glm::dvec3 eye, forward, right, up;
+    double tanHalf;
+    int width, height;
+};
+glm::dvec3 vec3(const nlohmann::json& xyz);  // [x, y, z]
 
 // The hard-case scenes under tests/scenes/.
 std::vector<std::string> hardCaseScenes();

@@ -23,6 +23,9 @@
 //                    mip levels: a floor that reaches the horizon)
 //   panel.glb        a painted metal panel: base colour, metal-roughness and normal
 //                    textures (a window of bare metal, rivets, a raised rim)
+//   etched_pane.glb  a pane of glass 1 x 1 x 0.02 (chapter 15's etched glass):
+//                    its front etched (roughness texture) but for a clear border,
+//                    a clear disc and a clear ring; standing on y = 0, facing +z
 //   leaf.glb         a leaf on a card: a square whose texture's alpha cuts the
 //                    leaf out (alphaMode MASK), with a round hole at its centre
 #include "core/files.h"
@@ -333,6 +336,57 @@ std::vector<TextureImage> panelImages(int size) {
             {"normalTexture", encodePng(size, size, 3, normal)}};
 }
 
+// Etched glass (chapter 15): a pane's metal-roughness texture, G the roughness
+// factor's multiplier: 1 (etched) over the pane's front but for a clear
+// border 0.06 wide, a clear disc (radius 0.2 about the centre) and a clear
+// ring (0.27 to 0.31); edges antialiased (4 x 4 points a texel).
+double etchedAt(double u, double v) {
+    double r = std::hypot(u - 0.5, v - 0.5);
+    bool border = std::min(std::min(u, 1 - u), std::min(v, 1 - v)) < 0.06;
+    bool clear = border || r < 0.2 || (r > 0.27 && r < 0.31);
+    return clear ? 0.0 : 1.0;
+}
+std::vector<TextureImage> etchImages(int size) {
+    std::vector<unsigned char> metalRough(size_t(size) * size * 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double etched = 0;
+            for (int k = 0; k < 16; ++k)
+                etched += etchedAt((x + (k % 4 + 0.5) / 4) / size, (y + (k / 4 + 0.5) / 4) / size) / 16;
+            unsigned char* mr = &metalRough[3 * (size_t(y) * size + x)];
+            mr[0] = 255;                                             // R: occlusion, not read
+            mr[1] = (unsigned char)std::lround(etched * 255);        // G: roughness
+            mr[2] = 0;                                               // B: not metal
+        }
+    return {{"metallicRoughnessTexture", encodePng(size, size, 3, metalRough)}};
+}
+
+// A box of glass w x h x t standing on y = 0, facing +z, each face its own
+// four vertices (flat normals, counter-clockwise from outside). The front's
+// texture coordinates span the texture (v down, as glTF's); every other face
+// reads the texture's corner (the clear border).
+rg::Mesh pane(double w, double h, double t) {
+    rg::Mesh m;
+    const glm::dvec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1), centre(0, h / 2, 0), half(w / 2, h / 2, t / 2);
+    // each face: its normal and two axes with u x v = normal
+    const glm::dvec3 faces[6][3] = {{Z, X, Y}, {-Z, Y, X}, {X, Y, Z}, {-X, Z, Y}, {Y, Z, X}, {-Y, X, Z}};
+    for (const auto& f : faces) {
+        auto base = uint32_t(m.vertices.size());
+        for (int c = 0; c < 4; ++c) {
+            double a = (c == 1 || c == 2) ? 1 : -1, b = c >= 2 ? 1 : -1;
+            // the half-sizes along the face's axes (its normal may point down an axis)
+            auto extent = [&](const glm::dvec3& axis) { return std::abs(glm::dot(axis, half)); };
+            glm::dvec3 p = centre + f[0] * extent(f[0]) + a * f[1] * extent(f[1]) + b * f[2] * extent(f[2]);
+            m.vertices.push_back(glm::vec3(p));
+            m.normals.push_back(glm::vec3(f[0]));
+            bool front = f[0] == Z;
+            m.texcoords.push_back(front ? glm::vec2(float(p.x / w + 0.5), float(1 - p.y / h)) : glm::vec2(0.01f, 0.01f));
+        }
+        m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    return m;
+}
+
 // A square [-1, 1] x {0} x [-1, 1] facing up, its texture repeated `repeat` times each way.
 rg::Mesh square(float repeat) {
     rg::Mesh m;
@@ -489,6 +543,9 @@ int main(int argc, char** argv) {
                                 {"normalTexture", {{"scale", 1.0}}}};
         writeGltf(dir + "/panel.glb", square(1), panel, true, panelImages(256));
         writeGltf(dir + "/leaf.glb", square(1), leaf, true, {{"baseColorTexture", leafPng(128)}});
+        nlohmann::json etched = glassMaterial("etched glass", 1.5);
+        etched["pbrMetallicRoughness"]["roughnessFactor"] = 0.5;  // times the texture's G
+        writeGltf(dir + "/etched_pane.glb", pane(1, 1, 0.02), etched, true, etchImages(256));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "make_meshes: %s\n", e.what());
         return 1;
