@@ -272,8 +272,11 @@ struct RtPush {
     // scattering loses, with the albedo table at albedoTable (device address)
     uint multipleScattering;
     uvec2 albedoTable;
+    // chapter 14's --gather-cap: a gather reads at most this many photons of a
+    // cell, a random run of them weighted up (0: all; gather.glsl)
+    uint gatherCap;
 };
-RG_SIZE(RtPush, 88);
+RG_SIZE(RtPush, 92);
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
 #define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)

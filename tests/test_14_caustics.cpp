@@ -541,6 +541,45 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
 }
 // [end]
 
+// [region gather_cap]
+// The capped gather (gather.glsl's cellRun) reads a random run of a crowded
+// cell's photons, weighted up: its mean is the full gather's. The ball
+// lens's shadow seen from above, the same photons (same seed, same frames)
+// gathered in full and with at most 4 photons a cell: the capped picture
+// differs pixel by pixel (the cap is at work: the focus's cells hold far
+// more), and its total light over the shadow is the full gather's within 2 %.
+TEST(Chapter14, CappedGatherKeepsTheMean) {
+    std::string dir = rgtest::outputDir("14_gather_cap");
+    const double n = 1.5, f = n / (2 * (n - 1));
+    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
+    ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
+    std::string path = writeScene(dir, "ball", ball);
+    std::vector<std::string> common = {"--frames", "8", "--photons", "200000", "--alpha", "1"};
+    auto with = [&](std::vector<std::string> extra) {
+        extra.insert(extra.end(), common.begin(), common.end());
+        return extra;
+    };
+    Rendered full = render(path, dir + "/full", 96, 96, with({"--gather-cap", "0"}));
+    Rendered capped = render(path, dir + "/capped", 96, 96, with({"--gather-cap", "4"}));
+    Rendered off = render(path, dir + "/off", 96, 96, {"--frames", "1", "--caustics", "off"});
+    EXPECT_EQ(full.report["photons"]["gather_cap"], 0);
+    EXPECT_EQ(capped.report["photons"]["gather_cap"], 4);
+    glm::dvec3 fullSum(0), cappedSum(0);
+    int shadow = 0, differ = 0;
+    for (size_t i = 0; i < off.image.rgba.size(); i += 4) {
+        if (off.image.rgba[i + 1] > 0.01) continue;  // the shadow: its light is the photons'
+        ++shadow;
+        for (int c = 0; c < 3; ++c) fullSum[c] += full.image.rgba[i + c], cappedSum[c] += capped.image.rgba[i + c];
+        if (std::abs(capped.image.rgba[i + 1] - full.image.rgba[i + 1]) > 0.01 * full.image.rgba[i + 1]) ++differ;
+    }
+    std::printf("shadow pixels %d, capped differs in %d; total light capped / full: %.4f %.4f %.4f\n", shadow, differ,
+                cappedSum.r / fullSum.r, cappedSum.g / fullSum.g, cappedSum.b / fullSum.b);
+    ASSERT_GT(shadow, 50);
+    EXPECT_GT(differ, shadow / 10) << "the cap is at work in the focus";
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(cappedSum[c] / fullSum[c], 1.0, 0.02) << "channel " << c;
+}
+// [end]
+
 // Page 14's other scenes, read off their pictures: a glass of water and a
 // mirror ring each focus the sun brighter than the open floor (twice it),
 // and nothing of it is left with --caustics off.

@@ -4,12 +4,37 @@
 #ifndef GATHER_GLSL
 #define GATHER_GLSL
 #include "photon_map.glsl"
+#include "sampling.glsl"
+
+// [region gather_cap]
+// Performance (the performance page measures it; --gather-cap 0 turns it
+// off): where a caustic focuses, one cell can hold a good part of all the
+// photons, and every pixel there would read them all. A gather reads at
+// most push.gatherCap of a cell's photons instead: a run of consecutive
+// ones from a random start, wrapping around, weighted by count / cap. Each
+// photon is read with probability cap / count, so the estimate's mean is
+// unchanged (unbiased); it only adds noise where photons are dense, and
+// the frames' average removes it as it removes the photons' own noise.
+struct CellRun {
+    uint start, count;
+    float weight;
+};
+CellRun cellRun(uint count, vec3 p, uint bucket) {
+    if (push.gatherCap == 0u || count <= push.gatherCap) return CellRun(0u, count, 1.0);
+    uvec3 bits = floatBitsToUint(p);
+    uint h = pcgHash(bits.x ^ pcgHash(bits.y ^ pcgHash(bits.z ^ pcgHash(push.frame ^
+                                                                         bucket))));
+    return CellRun(h % count, push.gatherCap, float(count) / float(push.gatherCap));
+}
+// [end]
 
 // [region gather]
 // E(p) = sum of the photons' power within r of p / (pi r^2), counting only
 // photons that arrived on the side n faces (a thin wall's other side is
 // another surface). The 2x2x2 cells nearest p hold every photon within r
 // (a cell is 2r wide); two of them may share a bucket, which is read once.
+// cellRun gives all of a cell's photons, or a random run of a crowded
+// cell's, weighted up (gather_cap above: a performance trick).
 vec3 causticIrradiance(vec3 p, vec3 n) {
     if (push.photonMap == uvec2(0u)) return vec3(0.0);
     PhotonMapRef map = PhotonMapRef(push.photonMap);
@@ -27,13 +52,18 @@ vec3 causticIrradiance(vec3 p, vec3 n) {
         for (uint j = 0u; j < k; ++j) again = again || read[j] == bucket;
         read[k] = bucket;
         if (again) continue;
-        uint end = cells.cells[bucket];
-        for (uint i = bucket == 0u ? 0u : cells.cells[bucket - 1u]; i < end; ++i) {
-            Photon photon = sorted.photons[i];
+        uint first = bucket == 0u ? 0u : cells.cells[bucket - 1u];
+        uint count = cells.cells[bucket] - first;
+        CellRun run = cellRun(count, p, bucket);
+        vec3 cellSum = vec3(0.0);
+        for (uint j = 0u; j < run.count; ++j) {
+            uint i = run.start + j;
+            Photon photon = sorted.photons[first + (i < count ? i : i - count)];
             vec3 d = photon.position - p;
             if (dot(d, d) < r * r && dot(unpackSnorm4x8(photon.normal).xyz, n) > 0.0)
-                sum += photon.power;
+                cellSum += photon.power;
         }
+        sum += cellSum * run.weight;
     }
     return sum / (kPi * r * r);
 }

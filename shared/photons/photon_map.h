@@ -31,6 +31,9 @@ struct PhotonSettings {
     int referenceGrid = 1000;
     // --photon-seed: another set of photons (independent runs, for studies)
     int seed = 0;
+    // --gather-cap: photons read of one cell at most (0: all; the
+    // performance page measures it)
+    int gatherCap = 0;
     float lastRadius = 0;  // the last frame's radius (the report)
     bool kept = false;     // the last frame reused the map before it (the overlay)
 };

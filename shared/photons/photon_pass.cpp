@@ -45,6 +45,10 @@ void declarePhotonOptions(Params& params, PhotonSettings& photons) {
         .integer("--photon-seed", photons.seed,
                  "Draw another set of photons (an independent estimate)", 0, 1000000)
         .live = false;
+    params.integer("--gather-cap", photons.gatherCap,
+                   "Photons a gather reads of one cell at most, a random run of them "
+                   "weighted up (0: all; a performance trick, see the performance page)",
+                   0, 1 << 30);
     params
         .text("--photons-ply", photons.ply,
               "Write the last frame's photons to this PLY point cloud")
@@ -103,6 +107,7 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
                              FrameChange change) {
         push.caustics = CAUSTICS_PHOTONS;
         push.photonSeed = uint32_t(photons.seed);
+        push.gatherCap = uint32_t(photons.gatherCap);
         photons.lastRadius = frameRadius(photons, change.accumulated);
         // The map does not depend on the camera: while only the view moves
         // (every such frame starts a new average, at the first radius), the
@@ -132,7 +137,8 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
                                 {"grid_cells", map->cellCount},
                                 {"first_radius", photons.radius},
                                 {"last_radius", photons.lastRadius},
-                                {"alpha", photons.alpha}}}};
+                                {"alpha", photons.alpha},
+                                {"gather_cap", photons.gatherCap}}}};
     };
     // the window's overlay: how fast photons go, and the radius now
     pass.overlay = [&photons](double gpuMs) {
