@@ -7,16 +7,19 @@ then sRGB) and writes an 8-bit PNG, with a gap between the panels (numpy and
 PIL: Debian's python3-numpy and python3-pil).
 
     tools/montage.py OUT.png A.pfm B.pfm ... [--gap PIXELS] [--scale N] [--stack]
+                     [--label X,Y,TX,TY,TEXT ...]
 
 --scale N draws each pixel as an N x N square, so that single pixels (a
 staircase at an edge, chapter 04's antialiasing) can be seen. --stack puts
 the panels one above the other, so that a page's column shows each at full
-width (chapter 12's mip levels).
+width (chapter 12's mip levels). --label draws an arrow from the text,
+written at TX,TY (its left end, the middle of its height), to the point
+X,Y of the finished picture (pixels, top left 0,0): what a page names.
 """
 import sys
 
 import numpy as np
-from PIL import Image
+from PIL import Image, ImageDraw, ImageFont
 
 
 def fail(message):
@@ -51,9 +54,53 @@ def to_display8(linear):
     return np.floor(s * 255.0 + 0.5).astype(np.uint8)
 
 
+def parse_label(text):
+    """X,Y,TX,TY,TEXT: the point, where the text starts, the text."""
+    parts = text.split(",", 4)
+    try:
+        x, y, tx, ty = (int(v) for v in parts[:4])
+        return (x, y), (tx, ty), parts[4]
+    except (ValueError, IndexError):
+        fail(f"--label {text!r}: give X,Y,TX,TY,TEXT (whole pixels, then the text)")
+
+
+def draw_labels(image, labels):
+    """Each label: its text in white on a dark box, and an arrow from the
+    box to the point, dark with a white edge so it shows on any picture."""
+    draw = ImageDraw.Draw(image)
+    size = max(12, image.width // 53)  # 18 px on a 960-pixel-wide picture
+    try:  # Debian's fonts-dejavu-core; PIL's own bitmap font without it
+        font = ImageFont.truetype("DejaVuSans.ttf", size)
+    except OSError:
+        font = ImageFont.load_default()
+    for (x, y), (tx, ty), text in labels:
+        left, top, right, bottom = draw.textbbox((tx, ty), text, font=font, anchor="lm")
+        pad = size // 4
+        box = (left - pad, top - pad, right + pad, bottom + pad)
+        # the arrow leaves the box's side nearest the point
+        sx = box[2] if x > box[2] else box[0] if x < box[0] else (box[0] + box[2]) / 2
+        sy = box[3] if y > box[3] else box[1] if y < box[1] else (box[1] + box[3]) / 2
+        length = max(1e-6, ((x - sx) ** 2 + (y - sy) ** 2) ** 0.5)
+        ux, uy = (x - sx) / length, (y - sy) / length
+        head = [(x, y), (x - size * 0.6 * ux + size * 0.3 * uy, y - size * 0.6 * uy - size * 0.3 * ux),
+                (x - size * 0.6 * ux - size * 0.3 * uy, y - size * 0.6 * uy + size * 0.3 * ux)]
+        for colour, width in (("white", 5), ("black", 2)):
+            draw.line([(sx, sy), (x - size * 0.5 * ux, y - size * 0.5 * uy)], fill=colour, width=width)
+        draw.polygon(head, fill="black", outline="white")
+        draw.rectangle(box, fill=(20, 20, 20), outline="white")
+        draw.text((tx, ty), text, font=font, fill="white", anchor="lm")
+
+
 def main(argv):
     options = {"--gap": 4, "--scale": 1}
     args = list(argv)
+    labels = []
+    while "--label" in args:
+        i = args.index("--label")
+        if i + 1 >= len(args):
+            fail("--label needs X,Y,TX,TY,TEXT")
+        labels.append(parse_label(args[i + 1]))
+        del args[i:i + 2]
     for name in options:
         if name in args:
             i = args.index(name)
@@ -89,7 +136,9 @@ def main(argv):
         x0 += w + gap
     if stack:
         canvas = np.ascontiguousarray(canvas.transpose(1, 0, 2))
-    Image.fromarray(canvas, "RGB").save(out, optimize=True)
+    picture = Image.fromarray(canvas, "RGB")
+    draw_labels(picture, labels)
+    picture.save(out, optimize=True)
     return 0
 
 

@@ -27,7 +27,7 @@ done
 packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
           mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
-          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils python3-pil python3-numpy
+          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils python3-pil python3-numpy fonts-dejavu-core
           nodejs)
 # The Khronos glTF validator (a test runs it on every glTF file the project
 # writes): from the npm registry into .node/, a pinned version.
