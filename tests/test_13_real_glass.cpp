@@ -480,6 +480,69 @@ TEST(Dispersion, BadDispersionIsOneClearLine) {
 
 }  // namespace
 
+// Page 13's "what you should see" of the glass of water: the ice cube,
+// under the waterline, almost vanishes (ice 1.309 in water 1.333: F at
+// normal incidence 8e-5), where chapter 10's rule (chapter 12, air outside
+// every glass) shows it dark and sharp. Each rule's picture against the same
+// scene without the ice: the change over the glass of water below the
+// waterline (projected from the scene's camera) is small with nested media
+// and several times larger with air outside every object.
+TEST(Media, TheIceCubeAlmostVanishesUnderWater) {
+    std::string dir = rgtest::outputDir("13_ice");
+    const int W = 160, H = 90;
+    nlohmann::json scene = rgtest::readJson(RG_SOURCE_DIR "/assets/scenes/real_glass.json");
+    std::string assets = (std::filesystem::path(RG_EXE_13).parent_path() / "assets").string();
+    for (nlohmann::json& o : scene["objects"])
+        if (o["type"] == "mesh") o["file"] = assets + "/" + std::string(o["file"]);
+    if (scene["sky"].contains("image")) scene["sky"]["image"] = assets + "/" + std::string(scene["sky"]["image"]);
+    nlohmann::json noIce = scene;
+    noIce["objects"] = nlohmann::json::array();
+    for (const nlohmann::json& o : scene["objects"])
+        if (o.value("material", "") != "ice") noIce["objects"].push_back(o);
+    ASSERT_EQ(noIce["objects"].size() + 1, scene["objects"].size());
+    auto render = [&](const char* exe, const nlohmann::json& s, const std::string& name,
+                      std::vector<std::string> extra) {
+        std::ofstream(dir + "/" + name + "_scene.json") << s.dump();
+        std::vector<std::string> args = {"--headless", "--validation", "--scene", dir + "/" + name + "_scene.json",
+                                         "--width", std::to_string(W), "--height", std::to_string(H), "--output",
+                                         dir + "/" + name + ".png"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        rgtest::RunResult r = rgtest::run(exe, args);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return rg::readPfm(dir + "/" + name + ".pfm");
+    };
+    const std::vector<std::string> chapter10Rule = {"--depth", "8", "--fresnel", "exact"};
+    rg::FloatImage nested = render(RG_EXE_13, scene, "nested", {}),
+                   nestedNoIce = render(RG_EXE_13, noIce, "nested_no_ice", {}),
+                   air = render(RG_EXE_12, scene, "air", chapter10Rule),
+                   airNoIce = render(RG_EXE_12, noIce, "air_no_ice", chapter10Rule);
+    // the glass of water (60 mm across, 90 tall, at (-0.5, 0, 0.6), 1/100 of its
+    // millimetres) below the waterline (y 0.6), seen from the front: the
+    // ice's light, refracted by the water and the glass, lands inside it
+    rgtest::SceneCamera camera(scene, W, H);
+    glm::dvec2 a = camera.project({-0.8, 0.1, 0.9}), b = camera.project({-0.2, 0.58, 0.9});
+    // how much darker the ice makes it: the light it takes away, over the
+    // light without it (under water it takes almost none; with chapter 10's
+    // rule it shows dark)
+    auto change = [&](const rg::FloatImage& with, const rg::FloatImage& without) {
+        double sum = 0, base = 0;
+        int n = 0;
+        for (int y = int(std::ceil(b.y)); y < int(a.y); ++y)
+            for (int x = int(std::ceil(a.x)); x < int(b.x); ++x, ++n)
+                for (int c = 0; c < 3; ++c) {
+                    size_t i = (size_t(y) * W + x) * 4 + c;
+                    sum += without.rgba[i] - with.rgba[i], base += without.rgba[i];
+                }
+        EXPECT_GT(n, 20) << "the window covers pixels";
+        return sum / std::max(base, 1e-9);
+    };
+    double withMedia = change(nested, nestedNoIce), withAir = change(air, airNoIce);
+    std::printf("the ice changes the glass of water below the waterline by %.3f of its light (nested media), "
+                "%.3f (air outside every object)\n", withMedia, withAir);
+    EXPECT_LT(withMedia, 0.05) << "under water the ice almost vanishes";
+    EXPECT_GT(withAir, 3 * withMedia) << "with chapter 10's rule it does not";
+}
+
 // Page 13's "what you should see" of the two amber balls: one glass, one
 // twice the other's size, so the larger is redder (Beer-Lambert: each
 // channel keeps exp(-sigma d), and the attenuation colour (0.85, 0.45,
