@@ -138,8 +138,10 @@ CLAIMS = [
                ["04_raygen_miss", "--reference"], 0.00005),  # the page's last digit
     rays("05_ambient.md", r"`([0-9]+) rays per frame` and a reference error", ["05_ambient", "--reference"], 0),
     pixels_off("05_ambient.md", r"RMSE, ([0-9.]+) % of pixels off", ["05_ambient", "--reference"], 0.005),
+    rmse("05_ambient.md", r"reference error of\s+about ([0-9.e-]+) RMSE", ["05_ambient", "--reference"], 1e-7),
     rays("06_diffuse.md", r"about ([0-9 ]+) rays per frame \(the camera rays plus",
          ["06_diffuse", "--reference"], 5000),  # "about 730 000": the page's last digit
+    rmse("06_diffuse.md", r"reference RMSE of about ([0-9.e-]+)\.", ["06_diffuse", "--reference"], 1e-7),
     rays("07_specular.md", r"chapter 06, about ([0-9 ]+)\s", ["07_specular", "--reference"], 1000),
     rmse("07_specular.md", r"reference RMSE of\s+about ([0-9.e-]+)\.", ["07_specular", "--reference"], 1e-7),
     rays("08_reflection.md", r"\(about ([0-9 ]+):\s+the reflected rays\)", ["08_reflection", "--reference"], 1000),
