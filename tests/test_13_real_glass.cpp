@@ -500,22 +500,15 @@ TEST(Media, TheIceCubeAlmostVanishesUnderWater) {
     for (const nlohmann::json& o : scene["objects"])
         if (o.value("material", "") != "ice") noIce["objects"].push_back(o);
     ASSERT_EQ(noIce["objects"].size() + 1, scene["objects"].size());
-    auto render = [&](const char* exe, const nlohmann::json& s, const std::string& name,
-                      std::vector<std::string> extra) {
-        std::ofstream(dir + "/" + name + "_scene.json") << s.dump();
-        std::vector<std::string> args = {"--headless", "--validation", "--scene", dir + "/" + name + "_scene.json",
-                                         "--width", std::to_string(W), "--height", std::to_string(H), "--output",
-                                         dir + "/" + name + ".png"};
-        args.insert(args.end(), extra.begin(), extra.end());
-        rgtest::RunResult r = rgtest::run(exe, args);
-        EXPECT_EQ(r.exitCode, 0) << r.output;
-        return rg::readPfm(dir + "/" + name + ".pfm");
+    auto pictureOf = [&](const char* exe, const nlohmann::json& s, const std::string& name,
+                         std::vector<std::string> extra) {
+        return render(exe, writeScene(dir, name, s), dir + "/" + name + ".pfm", W, H, extra);
     };
     const std::vector<std::string> chapter10Rule = {"--depth", "8", "--fresnel", "exact"};
-    rg::FloatImage nested = render(RG_EXE_13, scene, "nested", {}),
-                   nestedNoIce = render(RG_EXE_13, noIce, "nested_no_ice", {}),
-                   air = render(RG_EXE_12, scene, "air", chapter10Rule),
-                   airNoIce = render(RG_EXE_12, noIce, "air_no_ice", chapter10Rule);
+    rg::FloatImage nested = pictureOf(RG_EXE_13, scene, "nested", {}),
+                   nestedNoIce = pictureOf(RG_EXE_13, noIce, "nested_no_ice", {}),
+                   air = pictureOf(RG_EXE_12, scene, "air", chapter10Rule),
+                   airNoIce = pictureOf(RG_EXE_12, noIce, "air_no_ice", chapter10Rule);
     // the glass of water (60 mm across, 90 tall, at (-0.5, 0, 0.6), 1/100 of its
     // millimetres) below the waterline (y 0.6), seen from the front: the
     // ice's light, refracted by the water and the glass, lands inside it
