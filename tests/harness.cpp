@@ -83,6 +83,10 @@ glm::dvec2 SceneCamera::project(const glm::dvec3& p) const {
             (1 - glm::dot(d, up) / z / tanHalf) / 2 * height};
 }
 
+double SceneCamera::pixelsAcross(const glm::dvec3& p, double length) const {
+    return std::abs(project(p + length * right).x - project(p).x);
+}
+
 std::string outputDir(const std::string& name) {
     std::filesystem::path dir = std::filesystem::path(RG_TEST_OUTPUT_DIR) / name;
     std::filesystem::remove_all(dir);

@@ -57,6 +57,8 @@ nlohmann::json expectMatchesReference(const std::string& exe, const std::string&
 struct SceneCamera {
     SceneCamera(const nlohmann::json& scene, int width, int height);
     glm::dvec2 project(const glm::dvec3& p) const;
+    // how many pixels a length across the view at p spans (a sphere's radius)
+    double pixelsAcross(const glm::dvec3& p, double length) const;
     glm::dvec3 eye, forward, right, up;
     double tanHalf;
     int width, height;

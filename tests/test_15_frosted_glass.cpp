@@ -47,6 +47,21 @@ double channel(const rg::FloatImage& image, int x, int y, int c) {
     return image.rgba[(size_t(y) * image.width + x) * 4 + c];
 }
 
+// The spread of the mean of the three channels over the pixels [x0, x1) x
+// [y0, y1), over its mean: how much of a pattern a view through glass keeps.
+double spreadOverMean(const rg::FloatImage& image, int x0, int y0, int x1, int y1) {
+    double sum = 0, sumSq = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++n) {
+            double v = (channel(image, x, y, 0) + channel(image, x, y, 1) + channel(image, x, y, 2)) / 3;
+            sum += v, sumSq += v * v;
+        }
+    EXPECT_GT(n, 0) << "the window covers pixels";
+    double mean = sum / std::max(n, 1);
+    return std::sqrt(std::max(0.0, sumSq / std::max(n, 1) - mean * mean)) / std::max(mean, 1e-9);
+}
+
 // [region furnace]
 // A ball of radius 1 filling most of a 64x64 picture in a sky of radiance 1
 // everywhere, no light, no floor. Whatever the ball does to rays, a
@@ -189,28 +204,17 @@ TEST(Chapter15, SweepFromSmoothToRough) {
     const int width = 320, height = 180;
     rg::FloatImage image = render(RG_EXE_15, path, dir + "/sweep", width, height, {"--frames", "32"});
     rgtest::SceneCamera camera(scene, width, height);
-    auto project = [&](glm::dvec3 p) { return camera.project(p); };
-    auto vec = rgtest::vec3;
-    glm::dvec3 right = camera.right;
-    glm::dvec3 sun = glm::normalize(vec(scene["lights"][0]["direction"]));
+    glm::dvec3 sun = glm::normalize(rgtest::vec3(scene["lights"][0]["direction"]));
     std::vector<double> contrast, peak;
     for (size_t i = 1; i < scene["objects"].size(); ++i) {
         const nlohmann::json& ball = scene["objects"][i];
-        glm::dvec3 centre = vec(ball["center"]);
-        glm::dvec2 c = project(centre);
-        int r = int(std::abs(project(centre + double(ball["radius"]) * right).x - c.x));
-        // the view through the ball: luminance's spread over its mean, the inner half
-        double sum = 0, sumSq = 0;
-        int n = 0;
-        for (int y = int(c.y) - r / 2; y < int(c.y) + r / 2; ++y)
-            for (int x = int(c.x) - r / 2; x < int(c.x) + r / 2; ++x) {
-                double v = (channel(image, x, y, 0) + channel(image, x, y, 1) + channel(image, x, y, 2)) / 3;
-                sum += v, sumSq += v * v, ++n;
-            }
-        double mean = sum / n;
-        contrast.push_back(std::sqrt(std::max(0.0, sumSq / n - mean * mean)) / mean);
+        glm::dvec3 centre = rgtest::vec3(ball["center"]);
+        glm::dvec2 c = camera.project(centre);
+        int r = int(camera.pixelsAcross(centre, double(ball["radius"])));
+        // the view through the ball: the inner half of its disc
+        contrast.push_back(spreadOverMean(image, int(c.x) - r / 2, int(c.y) - r / 2, int(c.x) + r / 2, int(c.y) + r / 2));
         // the caustic: the brightest green within 1.2 radii of the sun's ray's foot
-        glm::dvec2 foot = project(centre + sun * (-centre.y / sun.y));
+        glm::dvec2 foot = camera.project(centre + sun * (-centre.y / sun.y));
         int b = int(1.2 * r);
         double brightest = 0;
         for (int y = std::max(0, int(foot.y) - b); y < std::min(height, int(foot.y) + b); ++y)
@@ -305,7 +309,7 @@ TEST(Chapter15, FrostedGlassSpreadsTheCaustic) {
         if (ball["type"] != "sphere" || contrast.size() == 3) continue;
         glm::dvec3 centre = rgtest::vec3(ball["center"]);
         glm::dvec2 c = camera.project(centre);
-        int r = int(std::abs(camera.project(centre + double(ball["radius"]) * camera.right).x - c.x));
+        int r = int(camera.pixelsAcross(centre, double(ball["radius"])));
         // over blocks of 4x4 pixels as displayed (clamped at 1): the frosted
         // ball's grain (glints far above 1, facets that find the caustic)
         // averages out in a block, the tiles' pattern does not
@@ -350,16 +354,8 @@ TEST(Chapter15, EtchedPaneIsClearOnlyWhereItsTextureIs) {
     auto spread = [&](double paneX, double u, double v, double half) {
         glm::dvec2 lo = camera.project({paneX + u - half - 0.5, 1 - v - half, 0.01});
         glm::dvec2 hi = camera.project({paneX + u + half - 0.5, 1 - v + half, 0.01});
-        double sum = 0, sumSq = 0;
-        int n = 0;
-        for (int y = int(std::ceil(hi.y)); y < int(lo.y); ++y)
-            for (int x = int(std::ceil(lo.x)); x < int(hi.x); ++x) {
-                double l = (channel(image, x, y, 0) + channel(image, x, y, 1) + channel(image, x, y, 2)) / 3;
-                sum += l, sumSq += l * l, ++n;
-            }
-        EXPECT_GT(n, 50) << "the window covers pixels";
-        double mean = sum / std::max(n, 1);
-        return std::sqrt(std::max(0.0, sumSq / std::max(n, 1) - mean * mean)) / std::max(mean, 1e-9);
+        EXPECT_GT((int(hi.x) - int(std::ceil(lo.x))) * (int(lo.y) - int(std::ceil(hi.y))), 50) << "the window";
+        return spreadOverMean(image, int(std::ceil(lo.x)), int(std::ceil(hi.y)), int(hi.x), int(lo.y));
     };
     const double panes[3] = {-1.15, 0, 1.15};  // clear, frosted, etched
     double disc[3], corner[3];

@@ -60,7 +60,7 @@ struct Scene {
             if (o["type"] == "sphere" && o["material"] == material) {
                 Disc d{rgtest::vec3(o["center"]), double(o["radius"]), {}, 0};
                 d.pixel = camera.project(d.centre);
-                d.pixels = std::abs(camera.project(d.centre + d.radius * camera.right).x - d.pixel.x);
+                d.pixels = camera.pixelsAcross(d.centre, d.radius);
                 return d;
             }
         ADD_FAILURE() << "no sphere of " << material;
