@@ -370,16 +370,16 @@ rg::Mesh pane(double w, double h, double t) {
     const glm::dvec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1), centre(0, h / 2, 0), half(w / 2, h / 2, t / 2);
     // each face: its normal and two axes with u x v = normal
     const glm::dvec3 faces[6][3] = {{Z, X, Y}, {-Z, Y, X}, {X, Y, Z}, {-X, Z, Y}, {Y, Z, X}, {-Y, X, Z}};
+    // the half-size along an axis (a face's normal may point down one)
+    auto extent = [&](const glm::dvec3& axis) { return std::abs(glm::dot(axis, half)); };
     for (const auto& f : faces) {
         auto base = uint32_t(m.vertices.size());
+        bool front = f[0] == Z;
         for (int c = 0; c < 4; ++c) {
             double a = (c == 1 || c == 2) ? 1 : -1, b = c >= 2 ? 1 : -1;
-            // the half-sizes along the face's axes (its normal may point down an axis)
-            auto extent = [&](const glm::dvec3& axis) { return std::abs(glm::dot(axis, half)); };
             glm::dvec3 p = centre + f[0] * extent(f[0]) + a * f[1] * extent(f[1]) + b * f[2] * extent(f[2]);
             m.vertices.push_back(glm::vec3(p));
             m.normals.push_back(glm::vec3(f[0]));
-            bool front = f[0] == Z;
             m.texcoords.push_back(front ? glm::vec2(float(p.x / w + 0.5), float(1 - p.y / h)) : glm::vec2(0.01f, 0.01f));
         }
         m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
