@@ -6,9 +6,11 @@
 // index always gives the same point.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <utility>
 #include <vector>
 
 #include "glsl_as_cpp.h"
@@ -64,6 +66,29 @@ TEST(Sobol, ScramblingChangesThePointsPerPixel) {
     glm::vec2 plain(shader::toUnit(glm::bitfieldReverse(0u)), shader::toUnit(shader::sobolSecond(0u)));
     EXPECT_EQ(plain, glm::vec2(0.0f));
     EXPECT_NE(shader::sobolPoint(0, 12345u), glm::vec2(0.0f));
+}
+
+// Sequences of two seeds at the same index are two dimensions of one path
+// (chapter 15: the facets of the first and the second bounce): together
+// they must fill the 4D cube evenly. A chi-square test over 4 boxes per
+// axis (their leading two bits); with unshuffled indices every
+// coordinate's leading bit follows the index's lowest bit, and half the
+// boxes stay empty.
+TEST(Sobol, SequencesOfTwoSeedsAreIndependentDimensions) {
+    const int n = 4096, cells = 4 * 4 * 4 * 4;
+    for (auto [a, b] : {std::pair{1u, 2u}, std::pair{shader::pixelSeed({3u, 4u}, 0u), 77u},
+                        std::pair{shader::pcgHash(5u), shader::pcgHash(6u)}}) {
+        std::vector<int> count(cells, 0);
+        for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+            glm::vec2 p = shader::sobolPoint(i, a), q = shader::sobolPoint(i, b);
+            auto quarter = [](float u) { return std::min(3, int(u * 4)); };
+            ++count[((quarter(p.x) * 4 + quarter(p.y)) * 4 + quarter(q.x)) * 4 + quarter(q.y)];
+        }
+        double expected = double(n) / cells, chi2 = 0;
+        for (int c : count) chi2 += (c - expected) * (c - expected) / expected;
+        // 255 degrees of freedom: the 99.9th percentile is about 330
+        EXPECT_LT(chi2, 330.0) << "seeds " << a << " and " << b;
+    }
 }
 
 TEST(Sobol, SameIndexSamePoint) {

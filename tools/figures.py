@@ -327,6 +327,7 @@ def owen(x, seed):
 
 
 def sobol_point(i, seed):
+    i = owen(i, pcg_hash((seed + 2) & M32))  # the shuffled index
     x = owen(bit_reverse(i), pcg_hash(seed))
     y = owen(sobol_second(i), pcg_hash((seed + 1) & M32))
     return (x >> 8) / 16777216.0, (y >> 8) / 16777216.0

@@ -51,8 +51,15 @@ uint owenScramble(uint x, uint seed) {
     return bitfieldReverse(x);
 }
 
-// Point `index` of the pixel's own scrambled sequence.
+// Point `index` of the pixel's own scrambled sequence. Sequences of other
+// seeds are other dimensions of one path (a bounce's facet, the pixel's
+// jitter) and take the same index: scrambling the index too (bits flipped
+// by the bits above them: a shuffle within every aligned block of 2^k, so
+// each block stays a net) makes them independent (Burley 2020's padding).
+// Unshuffled, their leading bits all follow the index's lowest bit, and a
+// pixel's average converges to a wrong value (chapter 15's furnace).
 vec2 sobolPoint(uint index, uint seed) {
+    index = owenScramble(index, pcgHash(seed + 2u));
     uint x = owenScramble(bitfieldReverse(index), pcgHash(seed));
     uint y = owenScramble(sobolSecond(index), pcgHash(seed + 1u));
     return vec2(toUnit(x), toUnit(y));
