@@ -275,8 +275,12 @@ struct RtPush {
     // chapter 14's --gather-cap: a gather reads at most this many photons of a
     // cell, a random run of them weighted up (0: all; gather.glsl)
     uint gatherCap;
+    // chapter 15's --roulette: past maxDepth a branch goes on as one path,
+    // ended by Russian roulette, up to this many bounces (<= maxDepth: cut)
+    uint maxPathDepth;
 };
-RG_SIZE(RtPush, 92);
+RG_SIZE(RtPush, 96);
+#define ROULETTE_MAX_DEPTH 64u  // --roulette on: a path's last possible bounce
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
 #define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)
@@ -291,7 +295,7 @@ RG_SIZE(RtPush, 92);
 // the last: a mirror (F = 1).
 #define ALBEDO_COS 32u
 #define ALBEDO_ROUGH 32u
-#define ALBEDO_ETA 16u
+#define ALBEDO_ETA 32u
 #define ALBEDO_ETA_MAX 3.0f
 #define ALBEDO_MIRROR_SLICE (2u * ALBEDO_ETA)
 #define ALBEDO_SLICES (2u * ALBEDO_ETA + 1u)

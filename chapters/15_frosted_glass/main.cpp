@@ -38,10 +38,30 @@ rg::FramePass withCompensation(rg::FramePass pass, const rg::FramePassContext& c
 }
 // [end]
 
+// [region roulette]
+// --roulette on (page 15, "Past the depth limit"): each frame's push
+// constants and the reference let a path go on past --depth, one branch
+// at a time, until Russian roulette ends it (ray_tree.glsl's roulette).
+rg::FramePass withRoulette(rg::FramePass pass, const int& roulette) {
+    auto record = pass.record;
+    pass.record = [=, &roulette](VkCommandBuffer cmd, rg::gpu::RtPush& push,
+                                 rg::FrameChange change) {
+        if (roulette == 0) push.maxPathDepth = ROULETTE_MAX_DEPTH;  // "on"
+        if (record) record(cmd, push, change);
+    };
+    auto reference = pass.reference;
+    pass.reference = [=, &roulette](rg::ReferenceSettings& r) {
+        r.maxPathDepth = roulette == 0 ? int(ROULETTE_MAX_DEPTH) : 0;
+        if (reference) reference(r);
+    };
+    return pass;
+}
+// [end]
+
 int main(int argc, char** argv) {
     // chapter 14's photon pass, its photons through rough surfaces too
     rg::PhotonChapter photons = rg::photonChapter("15_frosted_glass/photon.rgen");
-    int multipleScattering = 0;  // on
+    int multipleScattering = 0, roulette = 0;  // on, on
     return rg::runRtChapter(argc, argv, {
         .name = "15_frosted_glass",
         .description = "RayGlass chapter 15: frosted glass, microfacet reflection and "
@@ -64,12 +84,17 @@ int main(int argc, char** argv) {
                           "Give back the light single scattering between the facets "
                           "loses (the albedo table), or leave it lost",
                           {"on", "off"});
+            params.choice("--roulette", roulette,
+                          "Past --depth, let one path go on until Russian roulette "
+                          "ends it, or cut the light off there",
+                          {"on", "off"});
             photons.options(params, s);
         },
         .physicalLights = true,
         .adaptShaders = photons.adaptShaders,
         .framePass = [&](const rg::FramePassContext& c) {
-            return withCompensation(photons.framePass(c), c, multipleScattering);
+            return withRoulette(
+                withCompensation(photons.framePass(c), c, multipleScattering), roulette);
         },
     });
 }

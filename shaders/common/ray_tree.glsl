@@ -128,6 +128,33 @@ vec2 branchSample(uint depth, uint path) {
     return sobolPoint(push.accumulated, pcgHash(tree.seed ^ pcgHash(depth | path)));
 }
 // [end]
+
+// [region roulette]
+// Chapter 15: the depth limit cuts off light that is still bouncing, most
+// inside rough glass (the furnace on page 15). With --roulette on, past
+// the limit a branch goes on as one path instead of two: it follows the
+// refracted child with probability T / (R + T), else the reflected one,
+// and carries R + T either way; then Russian roulette ends it with
+// probability 1 - q, q its throughput's largest part (at most 1), and a
+// survivor carries its throughput / q. Both choices keep the mean (PBRT-v4
+// 2.2.4); the stack never grows, and paths end by ROULETTE_MAX_DEPTH.
+// Names past 16 bounces keep their last 16 turns (BRANCH_PATH_MASK).
+#define ROULETTE_SALT 0x0B0E7712u  // the choice's sequence, beside the facet's
+bool roulette(uint depth, uint path, inout vec3 refracted, inout vec3 reflected) {
+    if (depth >= push.maxPathDepth) return false;
+    float t = maxComponent(refracted), r = maxComponent(reflected);
+    if (t + r <= 0.0) return false;
+    vec2 u = sobolPoint(push.accumulated,
+                        pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
+    vec3 carried = refracted + reflected;
+    float q = min(1.0, maxComponent(carried));
+    if (u.y >= q) return false;
+    bool refract = u.x * (t + r) < t;
+    refracted = refract ? carried / q : vec3(0.0);
+    reflected = refract ? vec3(0.0) : carried / q;
+    return true;
+}
+// [end]
 #else
 uint childPath(uint path, uint refracted) { return 0u; }
 #endif
@@ -256,8 +283,15 @@ void growBranch() {
         tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local,
                                                    s.highlight, tree.rays);
 #endif
-    if (b.depth >= push.maxDepth) return;  // the depth limit: deeper light is lost
     vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
+    // [region depth_limit]
+    if (b.depth >= push.maxDepth) {  // the depth limit: deeper light is lost ...
+#ifdef MICROFACET
+        if (!roulette(b.depth, path, tr, rf))  // ... or one path goes on (chapter 15)
+#endif
+            return;
+    }
+    // [end]
     // [region refract]
     if (maxComponent(tr) >= MIN_THROUGHPUT) {
         // Snell: n1 sin(i) = n2 sin(t); GLSL's refract takes n facing the ray and n1 /

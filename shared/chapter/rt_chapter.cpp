@@ -188,6 +188,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                 .exposure = std::exp2(settings.exposure),
                 .antialias = jitter,
                 .facetSampling = uint32_t(settings.facetSampling),
+                .maxPathDepth = uint32_t(settings.maxDepth),  // no roulette
             };
             if (pass.record)
                 pass.record(cmd, push, {push.accumulated, viewer.viewOnlyChanged()});

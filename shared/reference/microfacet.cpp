@@ -75,6 +75,13 @@ glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
     return glm::dvec2(u);
 }
 
+glm::dvec2 rouletteSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
+                          uint32_t path) {
+    constexpr uint32_t kRouletteSalt = 0x0B0E7712u;  // ROULETTE_SALT
+    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(depth | path));
+    return glm::dvec2(shader::sobolPoint(accumulated, sequence ^ kRouletteSalt));
+}
+
 RoughBranches roughBranches(const ReferenceSettings& settings, const Material& m,
                             double alpha, double n1, double n2, const glm::dvec3& n,
                             const glm::dvec3& ns, const glm::dvec3& direction,

@@ -72,6 +72,10 @@ double roughLobe(const ReferenceSettings& settings, const Material& m, double al
 // pixel's average (seed: the pixel's, ray_tree.glsl's branchSample).
 glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                         uint32_t path);
+// Past the depth limit (--roulette): the GPU's point for the branch's
+// choice of child and its survival (ray_tree.glsl's roulette).
+glm::dvec2 rouletteSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
+                          uint32_t path);
 constexpr uint32_t kBranchPathShift = 8, kBranchPathMask = 0x00FFFF00u;
 // the stream of the pixel's seed for its facets (FACET_STREAM)
 constexpr uint32_t kFacetStream = 0xFACE75EDu;

@@ -87,6 +87,9 @@ struct ReferenceSettings {
     // Chapter 15's --multiple-scattering: rough lobes compensated with the
     // albedo table (scene/microfacet_albedo.h), as rough_surface.glsl does.
     bool multipleScattering = false;
+    // Chapter 15's --roulette: past maxDepth one path goes on, ended by
+    // Russian roulette, up to this depth (ray_tree.glsl's roulette)
+    int maxPathDepth = 0;
 };
 
 class ReferencePhotons;

@@ -275,7 +275,21 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
                               split.highlight);
     }
-    if (depth >= settings.maxDepth) return kept * color;
+    if (depth >= settings.maxDepth) {
+        // chapter 15's --roulette: one child goes on, chosen by the shares
+        // and kept by Russian roulette with the GPU's points
+        if (depth >= settings.maxPathDepth || reflected + refracted <= 0)
+            return kept * color;
+        glm::dvec2 u = rouletteSample(branch.seed, branch.accumulated, uint32_t(depth),
+                                      branch.path);
+        glm::dvec3 carried = arriving * (reflected + refracted);
+        double q = std::min(1.0, std::max({carried.r, carried.g, carried.b}));
+        if (u.y >= q) return kept * color;
+        bool refract = u.x * (reflected + refracted) < refracted;
+        double share = (reflected + refracted) / q;
+        refracted = refract ? share : 0.0;
+        reflected = refract ? 0.0 : share;
+    }
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
         glm::dvec3 t = arriving * w;
