@@ -20,7 +20,8 @@ import pathlib
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-OUT = ROOT / "docs" / "images"
+DOCS = ROOT / "docs"
+OUT = DOCS / "images"
 M32 = 0xFFFFFFFF
 
 
@@ -244,6 +245,11 @@ def ray_tree():
            color="#c0392b", size=12)
     for p in (p1, p2, p3):
         s.circle(*p, 3.5, fill="#111", stroke="#111")
+    # page 10's caption gives the same shares, rounded: they must stay true
+    caption = (f"{100 * f1:.1f} % is reflected at the\nfirst hit and {100 * (1 - f1) * (1 - f2):.1f} % leaves "
+               f"through the far side; the ray reflected inside\ncarries {100 * (1 - f1) * f2:.1f} %")
+    if caption not in (DOCS / "10_refraction.md").read_text():
+        raise SystemExit(f"figures.py: docs/10_refraction.md's ray tree caption no longer says: {caption!r}")
     s.text(20, 392, f"The ray enters at {math.degrees(math.acos(cos1)):.1f}° from the normal and meets the far side "
            f"at {math.degrees(math.acos(cos2)):.1f}° from inside, the angle it refracted to:", size=12, color="#444")
     s.text(20, 410, "so it can always leave (no total internal reflection). Each branch splits again at its next "
