@@ -64,36 +64,50 @@ vec3 towardLight(GpuLight light, vec3 p) {
 // The local model of chapter 09 (the shares `local` and `highlight`), in
 // radiometric terms: Lambert's kd / pi, and Blinn-Phong's lobe normalized
 // so that it reflects at most ks of the light, (s + 8) / (8 pi) (n.h)^s
-// (Akenine-Moller et al., Real-Time Rendering, 9.8), each times E.
+// (Akenine-Moller et al., Real-Time Rendering, 9.8), each times E; 0 for a
+// light behind the surface.
+vec3 localLight(GpuMaterial m, vec3 ns, vec3 v, vec3 l, vec3 irradiance, float local,
+                float highlight) {
+    float cosine = dot(ns, l), s = m.params.x;
+    if (cosine <= 0.0) return vec3(0.0);
+    vec3 brdf = local * m.kd.rgb / kPi +
+                highlight * m.ks.rgb * (s + 8.0) / (8.0 * kPi) *
+                    specularPower(ns, normalize(l + v), s);
+    return brdf * irradiance * cosine;
+}
+
+// E on a surface facing light i from p: I / r^2, or the sun's.
+vec3 irradianceFrom(uint i, vec3 p) {
+    vec3 toLight = lights[i].position.xyz - p;
+    return lights[i].position.w == LIGHT_DIRECTIONAL
+               ? lights[i].intensity.rgb
+               : lights[i].intensity.rgb / dot(toLight, toLight);
+}
+
+// What of light i reaches `origin` from direction l: 1 or 0 by a shadow
+// ray, or with --caustics transmit what the glass on the way lets through.
+vec3 lightArriving(uint i, vec3 origin, vec3 l) {
+    bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
+    if (push.caustics == CAUSTICS_TRANSMIT) {  // shadow rays through glass
+        vec3 toLight = lights[i].position.xyz - origin;
+        float tMax = sun ? kInfinity : safeLength(toLight) * (1.0 - 1e-5);
+        return transmittedLight(origin, sun ? l : safeNormalize(toLight), tMax);
+    }
+    bool visible =
+        sun ? sunVisible(origin, l) : lightVisible(origin, lights[i].position.xyz);
+    return vec3(visible ? 1.0 : 0.0);
+}
+
 vec3 directLight(GpuMaterial m, vec3 p, float error, vec3 n, vec3 ns, vec3 v,
                  float local, float highlight, inout uint rays) {
     vec3 sum = local * ambientTerm(m);  // ambient: 0 unless the scene gives it
     vec3 origin = secondaryOrigin(p, error, n);
     for (uint i = 0u; i < camera.counts.z; ++i) {
-        bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
-        vec3 toLight = lights[i].position.xyz - p;
         vec3 l = towardLight(lights[i], p);
-        float cosine = dot(ns, l);
-        if (cosine <= 0.0) continue;
-        // E on a surface facing the light: I / r^2, or the sun's
-        vec3 irradiance = sun ? lights[i].intensity.rgb
-                              : lights[i].intensity.rgb / dot(toLight, toLight);
-        float s = m.params.x;
-        vec3 brdf = local * m.kd.rgb / kPi +
-                    highlight * m.ks.rgb * (s + 8.0) / (8.0 * kPi) *
-                        specularPower(ns, normalize(l + v), s);
-        vec3 light = brdf * irradiance * cosine;
+        vec3 light = localLight(m, ns, v, l, irradianceFrom(i, p), local, highlight);
         if (max(light.r, max(light.g, light.b)) < MIN_LIGHT) continue;
         ++rays;
-        if (push.caustics == CAUSTICS_TRANSMIT) {  // shadow rays through glass
-            vec3 toLightHere = lights[i].position.xyz - origin;
-            float tMax = sun ? kInfinity : safeLength(toLightHere) * (1.0 - 1e-5);
-            vec3 dir = sun ? l : safeNormalize(toLightHere);
-            sum += light * transmittedLight(origin, dir, tMax);
-        } else if (sun ? sunVisible(origin, l)
-                       : lightVisible(origin, lights[i].position.xyz)) {
-            sum += light;
-        }
+        sum += light * lightArriving(i, origin, l);
     }
     return sum;
 }

@@ -254,14 +254,12 @@ void growBranch() {
     // [region rough_branches]
     // Chapter 15: a rough surface's two branches leave about one visible
     // normal, with the shares of rough_surface.glsl; the lights' glints are
-    // its lobe's, and directLight below keeps the local part's light only.
+    // its lobe's (roughLight below), the local model keeps the local part.
     float alpha = roughAlpha(m);
     RoughSplit rough;
     if (alpha > 0.0) {
         rough = roughSplit(m, alpha, n1, n2, n, ns, b.direction,
                            branchSample(b.depth, path));
-        tree.radiance += throughput * roughGlint(m, alpha, n1, n2, p, e, n, ns,
-                                                 -b.direction, throughput, tree.rays);
         s.reflected = rough.reflectedShare, s.refracted = rough.refractedShare;
         s.highlight = s.local;
     }
@@ -271,9 +269,14 @@ void growBranch() {
     // [region caustic_light]
     // chapter 14: direct light in watts, and the caustic light of the
     // photons that landed here, reflected by Lambert's kd / pi
+#ifdef MICROFACET  // chapter 15: with the glints of a rough surface
+    tree.radiance += throughput * roughLight(m, alpha, n1, n2, p, e, n, ns, -b.direction,
+                                             s.local, s.highlight, throughput, tree.rays);
+#else
     if (s.highlight > 0.0)
         tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,
                                                   s.highlight, tree.rays);
+#endif
     if (s.local > 0.0)
         tree.radiance +=
             throughput * s.local * m.kd.rgb / kPi * causticIrradiance(p, n);

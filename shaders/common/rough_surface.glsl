@@ -135,39 +135,44 @@ RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec
 // [end]
 
 // [region rough_glint]
-// The lights' glints on a rough surface, seen from v: the microfacet
-// lobe evaluated toward each light (it cannot be sampled: a point light or
-// the sun is hit by no ray). On the viewer's side the reflection,
-// F D G2 / (4 cos_o), of the dielectric and the mirror parts; behind the
-// surface the transmission (a frosted pane glows where the sun is behind
-// it), its shadow ray leaving from the far side. A glint that would add
-// less than MIN_LIGHT to the pixel (`throughput`: the branch's share of
-// it) traces no shadow ray, as a weak branch is not traced (performance
-// page: 9 % of chapter 15's camera rays' time).
-vec3 roughGlint(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float error,
-                vec3 n, vec3 ns, vec3 v, vec3 throughput, inout uint rays) {
+// The lights at a rough surface, seen from v: the microfacet lobe
+// evaluated toward each light (it cannot be sampled: a point light or the
+// sun is hit by no ray), and the local model's part (directLight's). On
+// the viewer's side the reflection, F D G2 / (4 cos_o), of the dielectric
+// and the mirror parts; behind the surface the transmission (a frosted
+// pane glows where the sun is behind it), its shadow ray leaving from the
+// far side. A glint that would add less than MIN_LIGHT to the pixel
+// (`throughput`: the branch's share of it) is left out, as a weak branch
+// is not traced (performance page: 9 % of chapter 15's camera rays' time).
+// The two parts share one shadow ray per light: on the GPU one call site
+// instead of two (performance page: 15 % of chapter 15's frame).
+vec3 roughLight(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float error,
+                vec3 n, vec3 ns, vec3 v, float local, float highlight, vec3 throughput,
+                inout uint rays) {
     mat3 frame = basisAround(ns);  // the frame of ns, as the reference builds it
     vec3 t = frame[0], b = frame[1];
-    vec3 wo = vec3(dot(v, t), dot(v, b), max(dot(v, ns), 1e-6));
-    wo = normalize(wo);
-    Compensation c = compensation(m, alpha, n1, n2, wo.z);  // for every light
-    vec3 sum = vec3(0.0);
+    vec3 wo = normalize(vec3(dot(v, t), dot(v, b), max(dot(v, ns), 1e-6)));
+    // for every light; alpha = 0: a smooth surface, no lobe
+    Compensation c = alpha > 0.0 ? compensation(m, alpha, n1, n2, wo.z)
+                                 : Compensation(1.0, 1.0);
+    vec3 sum = local * ambientTerm(m);  // ambient: 0 unless the scene gives it
     for (uint i = 0u; i < camera.counts.z; ++i) {
-        bool sun = lights[i].position.w == LIGHT_DIRECTIONAL;
-        vec3 toLight = lights[i].position.xyz - p;
-        vec3 l = towardLight(lights[i], p);
+        vec3 l = towardLight(lights[i], p), irradiance = irradianceFrom(i, p);
         vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
-        bool behind = dot(l, n) < 0.0;
-        if (behind != (wi.z < 0.0)) continue;  // between the two normals: neither side
-        float f = roughLobe(m, alpha, n1, n2, wo, wi, c);
-        vec3 irradiance = sun ? lights[i].intensity.rgb
-                              : lights[i].intensity.rgb / dot(toLight, toLight);
-        vec3 light = f * irradiance, seen = light * throughput;
-        if (max(seen.r, max(seen.g, seen.b)) < MIN_LIGHT) continue;
+        // behind both normals (n: a mesh's flat triangle); between them the
+        // lobe has no side, and the local part is lit from the front
+        bool behind = dot(l, n) < 0.0 && wi.z < 0.0;
+        vec3 light = vec3(0.0);
+        if (alpha > 0.0 && (behind || (dot(l, n) >= 0.0 && wi.z >= 0.0))) {
+            vec3 glint = roughLobe(m, alpha, n1, n2, wo, wi, c) * irradiance;
+            vec3 seen = glint * throughput;
+            if (max(seen.r, max(seen.g, seen.b)) >= MIN_LIGHT) light += glint;
+        }
+        vec3 direct = localLight(m, ns, v, l, irradiance, local, highlight);
+        if (max(direct.r, max(direct.g, direct.b)) >= MIN_LIGHT) light += direct;
+        if (light == vec3(0.0)) continue;
         ++rays;
-        vec3 origin = secondaryOrigin(p, error, behind ? -n : n);
-        if (sun ? sunVisible(origin, l) : lightVisible(origin, lights[i].position.xyz))
-            sum += light;
+        sum += light * lightArriving(i, secondaryOrigin(p, error, behind ? -n : n), l);
     }
     return sum;
 }

@@ -216,6 +216,8 @@ public:
     bool sunVisible(const glm::dvec3& from, const glm::dvec3& l) const;
     // --caustics transmit: what passes from `from` along unit l up to tMax,
     // through every glass surface on the way (1 - F each, Beer-Lambert inside).
+    glm::dvec3 lightArriving(const ReferenceSettings& settings, const PointLight& light,
+                             const glm::dvec3& from, const glm::dvec3& l) const;
     glm::dvec3 transmittedLight(const ReferenceSettings& settings, glm::dvec3 from,
                                 const glm::dvec3& l, double tMax) const;
     const Scene& scene() const { return scene_; }

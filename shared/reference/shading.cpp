@@ -77,24 +77,35 @@ glm::dvec3 ReferenceRenderer::directLight(const ReferenceSettings& settings,
                               std::pow(std::max(0.0, glm::dot(ns, h)), m.shininess);
         glm::dvec3 added = brdf * E * cosine;
         if (std::max({added.r, added.g, added.b}) < 1e-4) continue;  // as MIN_LIGHT
-        if (settings.transmitShadows) {
-            glm::dvec3 toLight = light.position - from;
-            double d = glm::length(toLight);
-            color += added * (sun ? transmittedLight(settings, from, l, 1e300)
-                                  : transmittedLight(settings, from, toLight / d,
-                                                     d * (1 - 1e-5)));
-            continue;
-        }
-        bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
-        if (visible) color += added;
+        color += added * lightArriving(settings, light, from, l);
     }
     return color;
 }
 // [end]
 
+// What of the light reaches `from` from direction l: 1 or 0 by a shadow
+// ray, or with transmitted shadows what the glass on the way lets through.
+glm::dvec3 ReferenceRenderer::lightArriving(const ReferenceSettings& settings,
+                                            const PointLight& light,
+                                            const glm::dvec3& from,
+                                            const glm::dvec3& l) const {
+    bool sun = light.kind == PointLight::Kind::Directional;
+    if (settings.transmitShadows) {
+        glm::dvec3 toLight = light.position - from;
+        double d = glm::length(toLight);
+        return sun ? transmittedLight(settings, from, l, 1e300)
+                   : transmittedLight(settings, from, toLight / d, d * (1 - 1e-5));
+    }
+    bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
+    return glm::dvec3(visible ? 1.0 : 0.0);
+}
+
 // Chapter 15: the lights' glints on a rough surface, the microfacet lobe
 // toward each (reflection on the viewer's side, transmission behind, its
-// shadow ray from the far side).
+// shadow ray from the far side). The GPU traces one shadow ray per light
+// for the glint and the local part together (rough_surface.glsl's
+// roughLight); both rays would start at the same point, so the sum is
+// the same.
 glm::dvec3 ReferenceRenderer::roughGlints(const ReferenceSettings& settings,
                                           const Material& m, double alpha, double n1,
                                           double n2, const glm::dvec3& p, double error,
@@ -114,8 +125,7 @@ glm::dvec3 ReferenceRenderer::roughGlints(const ReferenceSettings& settings,
         glm::dvec3 seen = added * throughput;  // what it adds to the pixel
         if (std::max({seen.r, seen.g, seen.b}) < 1e-4) continue;  // as MIN_LIGHT
         glm::dvec3 from = secondaryOrigin(p, error, behind ? -n : n);
-        bool visible = sun ? sunVisible(from, l) : lightVisible(from, light.position);
-        if (visible) color += added;
+        color += added * lightArriving(settings, light, from, l);
     }
     return color;
 }
