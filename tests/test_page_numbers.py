@@ -47,8 +47,8 @@ def marker_distance(report, png):
 
 
 BIN = None  # BUILD_BIN_DIR, for measures that run more commands
+WORK = None  # main()'s folder: every run writes under it, and it goes at the end
 FAR_FLOOR = ["--scene", "assets/scenes/far_floor.json", "--width", "480", "--height", "270"]
-_truths = {}
 
 
 def read_pfm(path):
@@ -61,14 +61,9 @@ def read_pfm(path):
 def rmse_from_64_rays(report, png):
     """Page 12's far floor: the RMSE (linear, all pixels and channels) of this
     run's picture from the same view with 64 rays a pixel at level 0."""
-    if "far_floor" not in _truths:
-        out = png.parent / "far_floor_64.png"
-        subprocess.run([str(BIN / "12_triangle_meshes"), "--headless", *FAR_FLOOR, "--mips", "off",
-                        "--antialias", "on", "--frames", "64", "--output", str(out)],
-                       cwd=ROOT, check=True, capture_output=True, timeout=600)
-        _truths["far_floor"] = read_pfm(out.with_suffix(".pfm"))
+    truth = run_once(["12_triangle_meshes", *FAR_FLOOR, "--mips", "off", "--antialias", "on", "--frames", "64"])
     image = read_pfm(png.with_suffix(".pfm"))
-    return float(numpy.sqrt(((image - _truths["far_floor"]) ** 2).mean()))
+    return float(numpy.sqrt(((image - read_pfm(truth.with_suffix(".pfm"))) ** 2).mean()))
 
 
 FURNACE = ["--width", "64", "--height", "64", "--caustics", "off"]
@@ -87,11 +82,9 @@ def furnace_loss(roughness, args):
         out = png  # the claim's own run: furnace.json as it is
         if scene["materials"]["rough_glass"]["roughness"] != roughness:
             scene["materials"]["rough_glass"]["roughness"] = roughness
-            path = png.parent / f"furnace_scene_{roughness}.json"
+            path = WORK / f"furnace_scene_{roughness}.json"
             path.write_text(json.dumps(scene))
-            out = png.parent / f"furnace_{roughness}.png"
-            subprocess.run([str(BIN / "15_frosted_glass"), "--headless", "--scene", str(path), *args,
-                            "--output", str(out)], cwd=ROOT, check=True, capture_output=True, timeout=600)
+            out = run_once(["15_frosted_glass", "--scene", str(path), *args])
         image = read_pfm(out.with_suffix(".pfm"))
         h, w = image.shape[:2]
         ys, xs = numpy.mgrid[0:h, 0:w]
@@ -108,20 +101,36 @@ ROUGH_REFERENCE = ["--frames", "256", "--pattern", "sobol", "--reference", "--re
 _rough = {}
 
 
+def run_once(command, timeout=600):
+    """The PNG that `command` (chapter, then its arguments) wrote, run
+    headless with validation under main()'s folder, once for all the
+    claims and measures that name it."""
+    key = tuple(command)
+    if key not in _runs:
+        png = WORK / f"run{len(_runs)}" / f"{command[0]}.png"
+        png.parent.mkdir()
+        args = [str(BIN / command[0]), "--headless", "--validation", *command[1:], "--output", str(png)]
+        run = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=timeout)
+        if run.returncode != 0:
+            raise RuntimeError(f"{' '.join(command)}: exit {run.returncode}: {run.stdout[-300:]}{run.stderr[-300:]}")
+        _runs[key] = png
+    return _runs[key]
+
+
+def reference_image(command):
+    """The CPU reference that `command` (which asks for --reference) wrote."""
+    png = run_once(command, timeout=900)
+    return read_pfm(png.with_name(png.stem + "_reference.pfm"))
+
+
 def rough_rmse(pattern, frames, png=None):
     """The RMSE (linear, as the chapter's report) of `pattern` after
-    `frames` (the run that wrote `png`, or one made here) against the
+    `frames` (the run that wrote `png`, or the table's own run) against the
     shared reference."""
-    work = pathlib.Path(tempfile.mkdtemp(prefix="rayglass-rough-"))
-    if "reference" not in _rough:
-        subprocess.run([str(BIN / "11_rough"), "--headless", *ROUGH, *ROUGH_REFERENCE, "--output",
-                        str(work / "reference.png")], cwd=ROOT, check=True, capture_output=True, timeout=600)
-        _rough["reference"] = read_pfm(work / "reference_reference.pfm")
+    reference = reference_image(["11_rough", *ROUGH, *ROUGH_REFERENCE])
     if png is None:
-        png = work / f"{pattern}_{frames}.png"
-        subprocess.run([str(BIN / "11_rough"), "--headless", *ROUGH, "--pattern", pattern, "--frames", str(frames),
-                        "--output", str(png)], cwd=ROOT, check=True, capture_output=True, timeout=600)
-    return float(numpy.sqrt(((read_pfm(png.with_suffix(".pfm")) - _rough["reference"]) ** 2).mean()))
+        png = run_once(["11_rough", *ROUGH, "--pattern", pattern, "--frames", str(frames)])
+    return float(numpy.sqrt(((read_pfm(png.with_suffix(".pfm")) - reference) ** 2).mean()))
 
 
 def rough_table(row, column):
@@ -143,23 +152,15 @@ def rough_table(row, column):
 # Page 13's prism: its spectrum after N frames against a reference of 4,096
 # (as tools/real_glass_study.py's convergence study, at 80x45), made once.
 PRISM = ["--scene", "assets/scenes/prism.json", "--width", "80", "--height", "45"]
-_prism = {}
 
 
 def prism_error(frames, png=None):
     """(RMSE, fraction of pixels off by more than 1/255 in sRGB) of the
     prism after `frames` against the 4,096-frame reference."""
-    work = pathlib.Path(tempfile.mkdtemp(prefix="rayglass-prism-"))
-    if "reference" not in _prism:
-        subprocess.run([str(BIN / "13_real_glass"), "--headless", *PRISM, "--frames", "4096", "--reference",
-                        "--output", str(work / "reference.png")], cwd=ROOT, check=True, capture_output=True,
-                       timeout=900)
-        _prism["reference"] = read_pfm(work / "reference_reference.pfm")
+    reference = reference_image(["13_real_glass", *PRISM, "--frames", "4096", "--reference"])
     if png is None:
-        png = work / f"prism_{frames}.png"
-        subprocess.run([str(BIN / "13_real_glass"), "--headless", *PRISM, "--frames", str(frames), "--output",
-                        str(png)], cwd=ROOT, check=True, capture_output=True, timeout=600)
-    image, reference = read_pfm(png.with_suffix(".pfm")), _prism["reference"]
+        png = run_once(["13_real_glass", *PRISM, "--frames", str(frames)])
+    image = read_pfm(png.with_suffix(".pfm"))
     srgb = lambda x: numpy.where(x <= 0.0031308, 12.92 * x, 1.055 * numpy.power(numpy.maximum(x, 0), 1 / 2.4) - 0.055)
     off = (numpy.abs(srgb(numpy.clip(image, 0, 1)) - srgb(numpy.clip(reference, 0, 1))).max(axis=-1) > 1 / 255).mean()
     return float(numpy.sqrt(((image - reference) ** 2).mean())), float(off)
@@ -378,7 +379,7 @@ def last_digit(stated_text):
 _runs = {}  # command -> the PNG its run wrote
 
 
-def check(claim, bin_dir, work):
+def check(claim, work):
     text = (ROOT / "docs" / claim["page"]).read_text()
     found = re.search(claim["pattern"], text)
     if not found:
@@ -388,24 +389,20 @@ def check(claim, bin_dir, work):
     name = claim["command"][0]
     extra = claim["prepare"](work) if "prepare" in claim else []
     # claims that name the same command read the same run
-    key = (*claim["command"], *extra)
-    if key not in _runs:
-        png = work / f"run{len(_runs)}" / f"{name}.png"
-        png.parent.mkdir()
-        args = [str(bin_dir / name), "--headless", "--validation", *claim["command"][1:], "--output", str(png), *extra]
-        run = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, timeout=600)
-        if run.returncode != 0:
-            return (f"{claim['page']}: {' '.join(claim['command'])}: exit {run.returncode}: "
-                    f"{run.stdout[-300:]}{run.stderr[-300:]}")
-        _runs[key] = png
-    png = _runs[key]
+    try:
+        png = run_once([*claim["command"], *extra])
+    except RuntimeError as error:
+        return f"{claim['page']}: {error}"
     report = json.loads(png.with_suffix(".json").read_text())
     if report["validation_messages"] != 0:
         return f"{claim['page']}: {name}: {report['validation_messages']} validation messages"
     if claim.get("lavapipe") and "llvmpipe" not in report["device"]:
         print(f"skipped {claim['page']}: it states a lavapipe number, this is {report['device']}")
         return None
-    measured = claim["measure"](report, png)
+    try:
+        measured = claim["measure"](report, png)
+    except RuntimeError as error:  # a run the measure needs
+        return f"{claim['page']}: {error}"
     tolerance = claim["tolerance"]
     if tolerance == "last digit":
         tolerance = last_digit(found.group(1))
@@ -419,12 +416,13 @@ def main(argv):
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
         return 2
-    global BIN
-    bin_dir = BIN = pathlib.Path(argv[1]).resolve()
+    global BIN, WORK
+    BIN = pathlib.Path(argv[1]).resolve()
     failures = []
     with tempfile.TemporaryDirectory(prefix="rayglass-numbers-") as work:
+        WORK = pathlib.Path(work)
         for claim in CLAIMS:
-            problem = check(claim, bin_dir, pathlib.Path(work))
+            problem = check(claim, WORK)
             if problem:
                 failures.append(problem)
                 print("FAIL " + problem)
