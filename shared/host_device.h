@@ -278,8 +278,11 @@ struct RtPush {
     // chapter 15's --roulette: past maxDepth a branch goes on as one path,
     // ended by Russian roulette, up to this many bounces (<= maxDepth: cut)
     uint maxPathDepth;
+    // chapter 15's --rough-branches one: 1, past the camera ray's hit a rough
+    // surface sends one branch on, chosen by the shares (ray_tree.glsl)
+    uint oneRoughBranch;
 };
-RG_SIZE(RtPush, 96);
+RG_SIZE(RtPush, 100);
 #define ROULETTE_MAX_DEPTH 64u  // --roulette on: a path's last possible bounce
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass

@@ -41,17 +41,24 @@ rg::FramePass withCompensation(rg::FramePass pass, const rg::FramePassContext& c
 // [region roulette]
 // --roulette on (page 15, "Past the depth limit"): each frame's push
 // constants and the reference let a path go on past --depth, one branch
-// at a time, until Russian roulette ends it (ray_tree.glsl's roulette).
-rg::FramePass withRoulette(rg::FramePass pass, const int& roulette) {
+// at a time, until Russian roulette ends it (ray_tree.glsl's roulette);
+// --rough-branches one: one branch past the camera ray's hit too.
+struct PathOptions {
+    int roulette = 0;       // on
+    int roughBranches = 1;  // one
+};
+rg::FramePass withPathOptions(rg::FramePass pass, const PathOptions& o) {
     auto record = pass.record;
-    pass.record = [=, &roulette](VkCommandBuffer cmd, rg::gpu::RtPush& push,
-                                 rg::FrameChange change) {
-        if (roulette == 0) push.maxPathDepth = ROULETTE_MAX_DEPTH;  // "on"
+    pass.record = [=, &o](VkCommandBuffer cmd, rg::gpu::RtPush& push,
+                          rg::FrameChange change) {
+        if (o.roulette == 0) push.maxPathDepth = ROULETTE_MAX_DEPTH;  // "on"
+        push.oneRoughBranch = o.roughBranches == 1;
         if (record) record(cmd, push, change);
     };
     auto reference = pass.reference;
-    pass.reference = [=, &roulette](rg::ReferenceSettings& r) {
-        r.maxPathDepth = roulette == 0 ? int(ROULETTE_MAX_DEPTH) : 0;
+    pass.reference = [=, &o](rg::ReferenceSettings& r) {
+        r.maxPathDepth = o.roulette == 0 ? int(ROULETTE_MAX_DEPTH) : 0;
+        r.oneRoughBranch = o.roughBranches == 1;
         if (reference) reference(r);
     };
     return pass;
@@ -61,7 +68,8 @@ rg::FramePass withRoulette(rg::FramePass pass, const int& roulette) {
 int main(int argc, char** argv) {
     // chapter 14's photon pass, its photons through rough surfaces too
     rg::PhotonChapter photons = rg::photonChapter("15_frosted_glass/photon.rgen");
-    int multipleScattering = 0, roulette = 0;  // on, on
+    int multipleScattering = 0;  // on
+    PathOptions paths;
     return rg::runRtChapter(argc, argv, {
         .name = "15_frosted_glass",
         .description = "RayGlass chapter 15: frosted glass, microfacet reflection and "
@@ -84,17 +92,21 @@ int main(int argc, char** argv) {
                           "Give back the light single scattering between the facets "
                           "loses (the albedo table), or leave it lost",
                           {"on", "off"});
-            params.choice("--roulette", roulette,
+            params.choice("--roulette", paths.roulette,
                           "Past --depth, let one path go on until Russian roulette "
                           "ends it, or cut the light off there",
                           {"on", "off"});
+            params.choice("--rough-branches", paths.roughBranches,
+                          "Past the camera ray's hit, a rough surface sends both "
+                          "branches on (the ray tree) or one, chosen by their shares",
+                          {"both", "one"});
             photons.options(params, s);
         },
         .physicalLights = true,
         .adaptShaders = photons.adaptShaders,
         .framePass = [&](const rg::FramePassContext& c) {
-            return withRoulette(
-                withCompensation(photons.framePass(c), c, multipleScattering), roulette);
+            return withPathOptions(
+                withCompensation(photons.framePass(c), c, multipleScattering), paths);
         },
     });
 }

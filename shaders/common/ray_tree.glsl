@@ -155,6 +155,27 @@ bool roulette(uint depth, uint path, inout vec3 refracted, inout vec3 reflected)
     return true;
 }
 // [end]
+
+// [region one_branch]
+// Chapter 15: a rough surface scatters its two branches over its lobe, so
+// neighbouring pixels' rays no longer travel together, and each costs
+// several times a smooth ray on a GPU (performance page). Past the camera
+// ray's own hit (the surface the viewer sees stays sharp), --rough-branches
+// one sends one branch on: the refracted with probability T / (R + T),
+// else the reflected, carrying R + T either way, which keeps the mean
+// (PBRT-v4's rough dielectric chooses the same way). The choice is
+// roulette's, drawn from the same point.
+void oneBranch(uint depth, uint path, inout vec3 refracted, inout vec3 reflected) {
+    float t = maxComponent(refracted), r = maxComponent(reflected);
+    if (t <= 0.0 || r <= 0.0) return;  // one branch already
+    vec2 u = sobolPoint(push.accumulated,
+                        pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
+    vec3 carried = refracted + reflected;
+    bool refract = u.x * (t + r) < t;
+    refracted = refract ? carried : vec3(0.0);
+    reflected = refract ? vec3(0.0) : carried;
+}
+// [end]
 #else
 uint childPath(uint path, uint refracted) { return 0u; }
 #endif
@@ -287,6 +308,12 @@ void growBranch() {
                                                    s.highlight, tree.rays);
 #endif
     vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
+    // [region one_branch_call]
+#ifdef MICROFACET
+    if (alpha > 0.0 && b.depth > 0u && push.oneRoughBranch != 0u)
+        oneBranch(b.depth, path, tr, rf);  // chapter 15: past the camera ray's hit
+#endif
+    // [end]
     // [region depth_limit]
     if (b.depth >= push.maxDepth) {  // the depth limit: deeper light is lost ...
 #ifdef MICROFACET

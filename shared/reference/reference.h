@@ -90,6 +90,9 @@ struct ReferenceSettings {
     // Chapter 15's --roulette: past maxDepth one path goes on, ended by
     // Russian roulette, up to this depth (ray_tree.glsl's roulette)
     int maxPathDepth = 0;
+    // Chapter 15's --rough-branches one: past the camera ray's hit a rough
+    // surface sends one branch on (ray_tree.glsl's oneBranch)
+    bool oneRoughBranch = false;
 };
 
 class ReferencePhotons;

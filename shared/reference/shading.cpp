@@ -285,6 +285,17 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
                               split.highlight);
     }
+    if (settings.oneRoughBranch && alpha > 0 && depth > 0 && reflected > 0 &&
+        refracted > 0) {
+        // chapter 15's --rough-branches one: one branch, chosen by the shares
+        // with roulette's point (the GPU's oneBranch)
+        glm::dvec2 u = rouletteSample(branch.seed, branch.accumulated, uint32_t(depth),
+                                      branch.path);
+        bool refract = u.x * (reflected + refracted) < refracted;
+        double share = reflected + refracted;
+        refracted = refract ? share : 0.0;
+        reflected = refract ? 0.0 : share;
+    }
     if (depth >= settings.maxDepth) {
         // chapter 15's --roulette: one child goes on, chosen by the shares
         // and kept by Russian roulette with the GPU's points
