@@ -140,18 +140,27 @@ vec2 branchSample(uint depth, uint path) {
 // 2.2.4); the stack never grows, and paths end by ROULETTE_MAX_DEPTH.
 // Names past 16 bounces keep their last 16 turns (BRANCH_PATH_MASK).
 #define ROULETTE_SALT 0x0B0E7712u  // the choice's sequence, beside the facet's
+vec2 choicePoint(uint depth, uint path) {
+    return sobolPoint(push.accumulated,
+                      pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
+}
+// One child instead of two, u in [0,1): the refracted with probability
+// t / (t + r), else the reflected, carrying both children's light.
+void keepOneChild(float u, inout vec3 refracted, inout vec3 reflected) {
+    float t = maxComponent(refracted), r = maxComponent(reflected);
+    vec3 carried = refracted + reflected;
+    bool refract = u * (t + r) < t;
+    refracted = refract ? carried : vec3(0.0);
+    reflected = refract ? vec3(0.0) : carried;
+}
 bool roulette(uint depth, uint path, inout vec3 refracted, inout vec3 reflected) {
     if (depth >= push.maxPathDepth) return false;
-    float t = maxComponent(refracted), r = maxComponent(reflected);
-    if (t + r <= 0.0) return false;
-    vec2 u = sobolPoint(push.accumulated,
-                        pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
-    vec3 carried = refracted + reflected;
-    float q = min(1.0, maxComponent(carried));
+    if (maxComponent(refracted) + maxComponent(reflected) <= 0.0) return false;
+    vec2 u = choicePoint(depth, path);
+    float q = min(1.0, maxComponent(refracted + reflected));
     if (u.y >= q) return false;
-    bool refract = u.x * (t + r) < t;
-    refracted = refract ? carried / q : vec3(0.0);
-    reflected = refract ? vec3(0.0) : carried / q;
+    keepOneChild(u.x, refracted, reflected);
+    refracted /= q, reflected /= q;
     return true;
 }
 // [end]
@@ -166,14 +175,9 @@ bool roulette(uint depth, uint path, inout vec3 refracted, inout vec3 reflected)
 // (PBRT-v4's rough dielectric chooses the same way). The choice is
 // roulette's, drawn from the same point.
 void oneBranch(uint depth, uint path, inout vec3 refracted, inout vec3 reflected) {
-    float t = maxComponent(refracted), r = maxComponent(reflected);
-    if (t <= 0.0 || r <= 0.0) return;  // one branch already
-    vec2 u = sobolPoint(push.accumulated,
-                        pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
-    vec3 carried = refracted + reflected;
-    bool refract = u.x * (t + r) < t;
-    refracted = refract ? carried : vec3(0.0);
-    reflected = refract ? vec3(0.0) : carried;
+    if (maxComponent(refracted) <= 0.0 || maxComponent(reflected) <= 0.0)
+        return;  // one branch already
+    keepOneChild(choicePoint(depth, path).x, refracted, reflected);
 }
 // [end]
 #else
@@ -291,8 +295,10 @@ void growBranch() {
     // chapter 14: direct light in watts, and the caustic light of the
     // photons that landed here, reflected by Lambert's kd / pi
 #ifdef MICROFACET  // chapter 15: with the glints of a rough surface
-    tree.radiance += throughput * roughLight(m, alpha, n1, n2, p, e, n, ns, -b.direction,
-                                             s.local, s.highlight, throughput, tree.rays);
+    if (alpha > 0.0 || s.highlight > 0.0)
+        tree.radiance += throughput * roughLight(m, alpha, n1, n2, p, e, n, ns,
+                                                 -b.direction, s.local, s.highlight,
+                                                 throughput, tree.rays);
 #else
     if (s.highlight > 0.0)
         tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,

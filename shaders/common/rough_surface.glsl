@@ -159,11 +159,11 @@ vec3 roughLight(GpuMaterial m, float alpha, float n1, float n2, vec3 p, float er
     for (uint i = 0u; i < camera.counts.z; ++i) {
         vec3 l = towardLight(lights[i], p), irradiance = irradianceFrom(i, p);
         vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, ns));
-        // behind both normals (n: a mesh's flat triangle); between them the
-        // lobe has no side, and the local part is lit from the front
-        bool behind = dot(l, n) < 0.0 && wi.z < 0.0;
+        // n: a mesh's flat triangle. Between it and ns the lobe has no side,
+        // and the local part is lit from the front.
+        bool below = dot(l, n) < 0.0, behind = below && wi.z < 0.0;
         vec3 light = vec3(0.0);
-        if (alpha > 0.0 && (behind || (dot(l, n) >= 0.0 && wi.z >= 0.0))) {
+        if (alpha > 0.0 && below == (wi.z < 0.0)) {
             vec3 glint = roughLobe(m, alpha, n1, n2, wo, wi, c) * irradiance;
             vec3 seen = glint * throughput;
             if (max(seen.r, max(seen.g, seen.b)) >= MIN_LIGHT) light += glint;

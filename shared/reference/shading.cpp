@@ -285,16 +285,21 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         color += localShading(settings, m, p, hit.error, n, ns, v, split.local,
                               split.highlight);
     }
-    if (settings.oneRoughBranch && alpha > 0 && depth > 0 && reflected > 0 &&
-        refracted > 0) {
-        // chapter 15's --rough-branches one: one branch, chosen by the shares
-        // with roulette's point (the GPU's oneBranch)
-        glm::dvec2 u = rouletteSample(branch.seed, branch.accumulated, uint32_t(depth),
-                                      branch.path);
-        bool refract = u.x * (reflected + refracted) < refracted;
+    // chapter 15: one child instead of two, u in [0,1): the refracted with
+    // probability T / (R + T), carrying R + T (ray_tree.glsl's keepOneChild)
+    auto keepOneChild = [&](double u) {
+        bool refract = u * (reflected + refracted) < refracted;
         double share = reflected + refracted;
         refracted = refract ? share : 0.0;
         reflected = refract ? 0.0 : share;
+    };
+    if (settings.oneRoughBranch && alpha > 0 && depth > 0 && reflected > 0 &&
+        refracted > 0) {
+        // chapter 15's --rough-branches one, with roulette's point (the GPU's
+        // oneBranch)
+        keepOneChild(rouletteSample(branch.seed, branch.accumulated, uint32_t(depth),
+                                    branch.path)
+                         .x);
     }
     if (depth >= settings.maxDepth) {
         // chapter 15's --roulette: one child goes on, chosen by the shares
@@ -306,10 +311,8 @@ glm::dvec3 ReferenceRenderer::radiance(const ReferenceSettings& settings,
         glm::dvec3 carried = arriving * (reflected + refracted);
         double q = std::min(1.0, std::max({carried.r, carried.g, carried.b}));
         if (u.y >= q) return kept * color;
-        bool refract = u.x * (reflected + refracted) < refracted;
-        double share = (reflected + refracted) / q;
-        refracted = refract ? share : 0.0;
-        reflected = refract ? 0.0 : share;
+        keepOneChild(u.x);
+        refracted /= q, reflected /= q;
     }
     constexpr double kMinThroughput = 1e-4;  // as the GPU's ray tree (chapter 10)
     auto strongEnough = [&](double w) {
