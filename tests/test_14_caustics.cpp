@@ -548,13 +548,17 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
 // gathered in full and with at most 4 photons a cell: the capped picture
 // differs pixel by pixel (the cap is at work: the focus's cells hold far
 // more), and its total light over the shadow is the full gather's within 2 %.
+// Which run a capped cell reads depends on the order the GPU's atomics
+// stored its photons, which changes from run to run: over 8 frames the
+// ratio ranged 0.978 to 1.021 in seven runs on lavapipe, over 32 frames
+// 0.991 to 1.006 in eight.
 TEST(Chapter14, CappedGatherKeepsTheMean) {
     std::string dir = rgtest::outputDir("14_gather_cap");
     const double n = 1.5, f = n / (2 * (n - 1));
     nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
     ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
     std::string path = writeScene(dir, "ball", ball);
-    std::vector<std::string> common = {"--frames", "8", "--photons", "200000", "--alpha", "1"};
+    std::vector<std::string> common = {"--frames", "32", "--photons", "200000", "--alpha", "1"};
     auto with = [&](std::vector<std::string> extra) {
         extra.insert(extra.end(), common.begin(), common.end());
         return extra;
