@@ -24,13 +24,17 @@ vec3 rayPointMagnitude(vec3 o, vec3 d, float t) {
 }
 
 // Along the unit normal n: the offset a secondary ray needs. `magnitude`:
-// the size of the object-space numbers that made the point
-// (rayPointMagnitude for a point on the ray).
+// the size of the world-space numbers that made the point.
+float hitError(vec3 magnitude, vec3 n) {
+    return 16.0 * kUnitRoundoff * dot(abs(n), magnitude);
+}
+// The same for a point made in object space (rayPointMagnitude for a point
+// on the ray) and taken to the world by the instance's transform.
 float hitError(vec3 magnitude, mat4x3 objectToWorld, vec3 n) {
-    vec3 e = abs(objectToWorld[0]) * magnitude.x +
-             abs(objectToWorld[1]) * magnitude.y +
-             abs(objectToWorld[2]) * magnitude.z + abs(objectToWorld[3]);
-    return 16.0 * kUnitRoundoff * dot(abs(n), e);
+    return hitError(abs(objectToWorld[0]) * magnitude.x +
+                        abs(objectToWorld[1]) * magnitude.y +
+                        abs(objectToWorld[2]) * magnitude.z + abs(objectToWorld[3]),
+                    n);
 }
 // [end]
 #endif

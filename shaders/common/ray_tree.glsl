@@ -194,8 +194,8 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
     tree.coneStart = 0.0;
 }
 
-// Traces the branch on top of the stack, adds the light it brings, and
-// pushes its own reflected and refracted branches.
+// Traces the branch on top of the stack, pushes its own reflected and
+// refracted branches, and adds the light it brings.
 void growBranch() {
     Branch b = tree.stack[--tree.top];
     // chapter 13: its light is one wavelength's
@@ -290,29 +290,6 @@ void growBranch() {
     }
     // [end]
 #endif
-#ifdef PHOTON_MAP
-    // [region caustic_light]
-    // chapter 14: direct light in watts, and the caustic light of the
-    // photons that landed here, reflected by Lambert's kd / pi
-#ifdef MICROFACET  // chapter 15: with the glints of a rough surface
-    if (alpha > 0.0 || s.highlight > 0.0)
-        tree.radiance += throughput * roughLight(m, alpha, n1, n2, p, e, n, ns,
-                                                 -b.direction, s.local, s.highlight,
-                                                 throughput, tree.rays);
-#else
-    if (s.highlight > 0.0)
-        tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,
-                                                  s.highlight, tree.rays);
-#endif
-    if (s.local > 0.0)
-        tree.radiance +=
-            throughput * s.local * m.kd.rgb / kPi * causticIrradiance(p, n);
-    // [end]
-#else
-    if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
-        tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local,
-                                                   s.highlight, tree.rays);
-#endif
     vec3 tr = throughput * s.refracted, rf = throughput * s.reflected;
     // [region one_branch_call]
 #ifdef MICROFACET
@@ -325,7 +302,7 @@ void growBranch() {
 #ifdef MICROFACET
         if (!roulette(b.depth, path, tr, rf))  // ... or one path goes on (chapter 15)
 #endif
-            return;
+            tr = rf = vec3(0.0);
     }
     // [end]
     // [region refract]
@@ -356,6 +333,31 @@ void growBranch() {
         uint depth = (b.depth + 1u) | spectral | childPath(path, 0u);
         tree.stack[tree.top++] = Branch(o, depth, r, tMax, rf, b.media);
     }
+    // The light at this hit last, once the branches are on the stack: fewer
+    // numbers are alive across its shadow rays (performance page).
+#ifdef PHOTON_MAP
+    // [region caustic_light]
+    // chapter 14: direct light in watts, and the caustic light of the
+    // photons that landed here, reflected by Lambert's kd / pi
+#ifdef MICROFACET  // chapter 15: with the glints of a rough surface
+    if (alpha > 0.0 || s.highlight > 0.0)
+        tree.radiance += throughput * roughLight(m, alpha, n1, n2, p, e, n, ns,
+                                                 -b.direction, s.local, s.highlight,
+                                                 throughput, tree.rays);
+#else
+    if (s.highlight > 0.0)
+        tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,
+                                                  s.highlight, tree.rays);
+#endif
+    if (s.local > 0.0)
+        tree.radiance +=
+            throughput * s.local * m.kd.rgb / kPi * causticIrradiance(p, n);
+    // [end]
+#else
+    if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares
+        tree.radiance += throughput * surfaceLight(m, p, e, n, ns, -b.direction, s.local,
+                                                   s.highlight, tree.rays);
+#endif
 }
 
 // The light arriving along one ray, following reflections and refractions
