@@ -11,7 +11,8 @@
 // - what the page says the default scene shows: the frosted balls spread
 //   the sun's caustic that the clear ball focuses;
 // - glTF's roughness on a transmissive material frosts it, and a
-//   metal-roughness texture etches it (smooth and rough halves).
+//   metal-roughness texture etches it (smooth and rough halves);
+// - --caustics transmit: a glint under a clear pane keeps (1 - F)^2.
 #include "harness.h"
 
 #include <algorithm>
@@ -462,6 +463,81 @@ TEST(Chapter15, GltfRoughnessEtchesTransmission) {
     std::printf("stripes through the glass, spread over mean: smooth half %.3f, etched half %.3f\n", smooth, etched);
     EXPECT_GT(smooth, 0.5) << "the smooth half shows the stripes";
     EXPECT_LT(etched, 0.3 * smooth) << "the etched half blurs them";
+}
+// [end]
+
+// [region glint_through_pane]
+// --caustics transmit lets a glint through glass (radiometry.glsl's
+// lightArriving): the sun, 40 degrees from straight down, reaches a floor
+// through a clear pane (two faces, n = 1.5, no absorption), seen from below
+// the pane at --depth 0, so every pixel is the floor's light from the sun
+// alone. Unbent and at the sun's own angle, each face passes 1 - F(40
+// degrees) (Fresnel, written here in double): the pane's shadow keeps
+// (1 - F)^2 of every pixel, the rest of the floor all of it. Chapter 15's
+// rough mirror shows the lobe's glint; chapter 14's glossy floor its
+// diffuse light and Blinn-Phong highlight.
+double fresnelInto(double cosine, double n) {  // unpolarized, from air
+    double sinT = std::sqrt(1 - cosine * cosine) / n, cosT = std::sqrt(1 - sinT * sinT);
+    double rs = (cosine - n * cosT) / (cosine + n * cosT), rp = (n * cosine - cosT) / (n * cosine + cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+TEST(Chapter15, GlintsThroughAPaneKeepFresnelsTransmittance) {
+    std::string dir = rgtest::outputDir("15_glint_pane");
+    const double theta = 40 * 3.14159265358979323846 / 180, n = 1.5;
+    const double kept = std::pow(1 - fresnelInto(std::cos(theta), n), 2);
+    nlohmann::json glass = {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", n}};
+    nlohmann::json floor = {{"type", "quad"}, {"center", {0.8, 0, 0}}, {"u", {3, 0, 0}}, {"v", {0, 0, -3}},
+                            {"material", "floor"}};
+    // the pane's faces: the top faces up, the bottom down; its shadow is shifted by tan(40) = 0.84 in x
+    nlohmann::json pane = {
+        {{"type", "quad"}, {"center", {0, 1.05, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, -1}}, {"material", "glass"}},
+        {{"type", "quad"}, {"center", {0, 1, 0}}, {"u", {1, 0, 0}}, {"v", {0, 0, 1}}, {"material", "glass"}}};
+    struct Floor {
+        const char* exe;
+        const char* name;
+        nlohmann::json material;
+    };
+    for (const Floor& f : {Floor{RG_EXE_15, "rough_mirror", {{"ka", 0}, {"kd", 0}, {"ks", 0},
+                                                             {"reflectivity", 0.9}, {"roughness", 0.5}}},
+                           Floor{RG_EXE_14, "glossy", {{"ka", 0}, {"kd", 0.5}, {"ks", 0.5}, {"shininess", 8}}}}) {
+        auto sceneWith = [&](bool withPane) {
+            nlohmann::json objects = {floor};
+            if (withPane) objects.insert(objects.end(), pane.begin(), pane.end());
+            return nlohmann::json{
+                // below the pane, looking down: no camera ray meets it
+                {"camera", {{"position", {0.84, 0.5, 2.2}}, {"look_at", {0.84, 0, 0.2}}, {"fov_y_deg", 24}}},
+                {"sky", {{"top", {0, 0, 0}}, {"horizon", {0, 0, 0}}, {"bottom", {0, 0, 0}}}},
+                {"lights", {{{"type", "directional"},
+                             {"direction", {std::sin(theta), -std::cos(theta), 0}},
+                             {"irradiance", {1, 1, 1}}}}},
+                {"materials", {{"floor", f.material}, {"glass", glass}}},
+                {"objects", objects}};
+        };
+        std::vector<std::string> args = {"--frames", "1", "--caustics", "transmit", "--depth", "0"};
+        if (std::string(f.exe) == RG_EXE_15) args.insert(args.end(), {"--roulette", "off"});
+        std::string stem = dir + "/" + f.name;
+        rg::FloatImage open = render(f.exe, writeScene(dir, std::string(f.name) + "_open", sceneWith(false)),
+                                     stem + "_open", 64, 48, args);
+        rg::FloatImage shaded = render(f.exe, writeScene(dir, std::string(f.name) + "_pane", sceneWith(true)),
+                                       stem + "_pane", 64, 48, args);
+        ASSERT_EQ(open.rgba.size(), shaded.rgba.size());
+        int inShadow = 0, outside = 0, other = 0;
+        double worst = 0;
+        for (size_t i = 0; i < open.rgba.size(); i += 4) {
+            double a = open.rgba[i + 1], b = shaded.rgba[i + 1];
+            if (a <= 1e-6) continue;  // too dim to read a ratio
+            double ratio = b / a;
+            if (std::abs(ratio - 1) < 1e-4) ++outside;
+            else if (std::abs(ratio / kept - 1) < 1e-4) ++inShadow, worst = std::max(worst, std::abs(ratio / kept - 1));
+            else ++other;
+        }
+        std::printf("%s: (1 - F)^2 = %.6f; pixels in the pane's shadow %d, outside %d, neither %d\n", f.name, kept,
+                    inShadow, outside, other);
+        EXPECT_GT(inShadow, 64 * 48 / 5) << f.name << ": the pane's shadow covers a fifth of the view";
+        EXPECT_GT(outside, 64 * 48 / 10) << f.name << ": and the open floor some of it";
+        EXPECT_EQ(other, 0) << f.name << ": every lit pixel keeps all or (1 - F)^2 of its light";
+    }
 }
 // [end]
 
