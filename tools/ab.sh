@@ -13,8 +13,11 @@
 #       runs each build (all in DIR, or the REVs given) once per round with
 #       --headless and the ARGS (default: --width 1920 --height 1080 --frames 60)
 #       and prints each run's median GPU ms, then each build's median over rounds.
+#       After a long load (10^6 spheres: seconds on the CPU, the GPU idle) the
+#       first frames can run several times slower: give such scenes
+#       --frames 300 (performance.md, "Short runs after a long load").
 set -euo pipefail
-usage() { sed -n '6,16p' "$0" >&2; exit 2; }
+usage() { sed -n '6,18p' "$0" >&2; exit 2; }
 [ $# -ge 3 ] || usage
 mode=$1 dir=$2 chapter=$3
 shift 3
