@@ -3,6 +3,7 @@
 // the Fresnel share of the light (chapters 09-12); the sphere reflects more
 // toward its rim (page 09).
 #include "harness.h"
+#include "fresnel_equations.h"
 
 #include <cmath>
 #include <fstream>
@@ -31,14 +32,6 @@ TEST(Chapter09, UnknownModeIsRejected) {
     rgtest::RunResult r = rgtest::run(RG_EXE_09, {"--headless", "--fresnel", "fast"});
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("--fresnel"), std::string::npos) << r.output;
-}
-
-// The unpolarized Fresnel equations, written out here in double: light
-// from air into index n at cos(incidence) c.
-double fresnelEquations(double c, double n) {
-    double sinT = std::sqrt(1 - c * c) / n, cosT = std::sqrt(1 - sinT * sinT);
-    double rs = (c - n * cosT) / (c + n * cosT), rp = (n * c - cosT) / (n * c + cosT);
-    return 0.5 * (rs * rs + rp * rp);
 }
 
 // A highlight is the light's own reflection, so on clear glass it carries
@@ -100,7 +93,7 @@ TEST(Chapter09, AGlintOnGlassIsTheFresnelShareOfTheLight) {
                                                      (1 - (y + 0.5) / height * 2) * tanHalf, -1));
             double b = glm::dot(eye, d), t = -b - std::sqrt(b * b - glm::dot(eye, eye) + 1);
             double cosI = -glm::dot(glm::normalize(eye + t * d), d);
-            double F = fresnelEquations(cosI, ior);
+            double F = rgtest::fresnelEquations(cosI, 1.0, ior);
             EXPECT_NEAR(g.rgba[best] / o.rgba[best], F, 0.01 * F) << "F " << F << " at cos " << cosI;
         }
     }

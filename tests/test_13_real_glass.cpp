@@ -8,6 +8,7 @@
 // white light through a slab stays white, and the prism scene against its
 // reference after the same frames.
 #include "harness.h"
+#include "fresnel_equations.h"
 #include "optics_image.h"
 
 #include <cmath>
@@ -22,14 +23,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Unpolarized Fresnel reflectance from index n1 into n2 at cos(incidence) c.
-double fresnelEquations(double c, double n1, double n2) {
-    double sinT = n1 / n2 * std::sqrt(1 - c * c);
-    if (sinT >= 1) return 1;
-    double cosT = std::sqrt(1 - sinT * sinT);
-    double rs = (n1 * c - n2 * cosT) / (n1 * c + n2 * cosT), rp = (n2 * c - n1 * cosT) / (n2 * c + n1 * cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
+using rgtest::fresnelEquations;
 
 std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
     std::string path = dir + "/" + name + "_scene.json";

@@ -5,6 +5,7 @@
 // parallel rays through the ball, ring by ring; photons lose no power; the
 // lights' keys are checked where they belong.
 #include "harness.h"
+#include "fresnel_equations.h"
 
 #include <cmath>
 #include <cstring>
@@ -16,16 +17,6 @@
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Unpolarized Fresnel reflectance from index n1 into n2 at cos(incidence) c.
-double fresnel(double c, double n1, double n2) {
-    double sinT = n1 / n2 * std::sqrt(std::max(0.0, 1 - c * c));
-    if (sinT >= 1) return 1;
-    double cosT = std::sqrt(1 - sinT * sinT);
-    double rs = (n1 * c - n2 * cosT) / (n1 * c + n2 * cosT);
-    double rp = (n2 * c - n1 * cosT) / (n2 * c + n1 * cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
 
 std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
     std::string path = dir + "/" + name + "_scene.json";
@@ -157,7 +148,7 @@ std::vector<double> ballLensRings(double n, double floorY, const std::vector<dou
         glm::dvec2 p = o + t * d, normal = p;  // unit: on the circle
         if (inside) normal = -normal;
         double cosI = -glm::dot(d, normal), n1 = inside ? n : 1.0, n2 = inside ? 1.0 : n;
-        double F = fresnel(cosI, n1, n2);
+        double F = rgtest::fresnelEquations(cosI, n1, n2);
         glm::dvec2 r = d + 2 * cosI * normal;
         trace(p, r, inside, w * F, depth + 1);
         if (F < 1) {
