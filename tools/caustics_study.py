@@ -7,7 +7,7 @@ OUT/caustics.md.
 
     tools/caustics_study.py --bin build/bin --out docs/perf/<device>
                             [--width W] [--height H] [--truth-frames N] [--max-frames M]
-                            [--photons P]
+                            [--photons P] [--gather-cap C]
     tools/caustics_study.py --out docs/perf/<device> --tables-only   (from its caustics.json)
 
 On the default scene (caustics.json). The "converged" picture is the
@@ -19,6 +19,9 @@ the small radii of late frames, page 14). Then 1, 2, 4, ... M frames of P
 photons, each mode: the RMSE (linear) over the caustic pixels (where the
 converged picture differs from --caustics off by more than 1/255 in
 display) and over the whole image, and the GPU time per frame over the run.
+With --gather-cap C, a third mode: the shrinking radius with the gather
+reading at most C photons a cell (chapter 14's performance trick), whose
+frames cost less and carry more noise; the converged picture reads them all.
 Standard library only, so it runs on the GPU machine too.
 """
 import os
@@ -34,11 +37,16 @@ def run(exe, size, extra, png):
     return run_chapter("caustics_study.py", exe, size, extra, png)
 
 
+def modes(cap):
+    """(name, options) of each mode; a cap adds the capped shrinking mode."""
+    return MODES + ((f"cap {cap}", ["--alpha", "0.6667", "--gather-cap", str(cap)]),) if cap else MODES
+
+
 def measure(args):
     size = (args.width, args.height)
     exe = os.path.join(args.bin, EXE)
     data = {"width": size[0], "height": size[1], "truth_frames": args.truth_frames, "photons": args.photons,
-            "runs": []}
+            "gather_cap": args.gather_cap, "runs": []}
     with tempfile.TemporaryDirectory() as tmp:
         print(f"{EXE} at {size[0]}x{size[1]}: converged picture of {args.truth_frames} frames")
         # its own photons (--photon-seed), independent of the runs' below
@@ -57,7 +65,7 @@ def measure(args):
                                 max(1, 3 * len(caustic)))
         frames = 1
         while frames <= args.max_frames:
-            for mode, extra in MODES:
+            for mode, extra in modes(args.gather_cap):
                 png = os.path.join(tmp, f"{mode}_{frames}.png")
                 report = run(exe, size, ["--frames", str(frames), "--photons", str(args.photons)] + extra, png)
                 image = read_pfm(os.path.splitext(png)[0] + ".pfm")
@@ -73,19 +81,27 @@ def measure(args):
 
 
 def tables(data):
+    cap = data.get("gather_cap", 0)
     out = [f"**Chapter 14, speed against error** on {data['device']} (`tools/caustics_study.py`): "
            f"the default scene at {data['width']}x{data['height']}, {data['photons']} photons a frame; "
            f"RMSE (linear) against the chapter's picture after {data['truth_frames']} frames of "
            f"{4 * data['photons']} photons with the shrinking radius, over the {data['caustic_pixels']} "
-           "caustic pixels (and over all pixels).\n",
-           "| frames | seconds (shrinking) | RMSE, shrinking radius | RMSE, fixed radius | all pixels, shrinking | "
-           "all pixels, fixed |",
-           "| --- | --- | --- | --- | --- | --- |"]
+           "caustic pixels (and over all pixels)" +
+           (f"; their mean radiance is {data['caustic_mean']:.4f}, so 1 % of it is "
+            f"{data['caustic_mean'] / 100:.4f}" if "caustic_mean" in data else "") + ".\n"]
+    head = "| frames | seconds (shrinking) | RMSE, shrinking radius | RMSE, fixed radius |"
+    if cap:
+        head += f" seconds (cap {cap}) | RMSE, shrinking, cap {cap} |"
+    out += [head + " all pixels, shrinking | all pixels, fixed |",
+            "| --- " * (head.count("|") + 1) + "|"]
     by = {(r["mode"], r["frames"]): r for r in data["runs"]}
     for frames in sorted({r["frames"] for r in data["runs"]}):
         s, f = by[("shrinking", frames)], by[("fixed", frames)]
-        out.append(f"| {frames} | {s['seconds']:.2f} | {s['rmse_caustic']:.4f} | {f['rmse_caustic']:.4f} | "
-                   f"{s['rmse_all']:.4f} | {f['rmse_all']:.4f} |")
+        row = f"| {frames} | {s['seconds']:.2f} | {s['rmse_caustic']:.4f} | {f['rmse_caustic']:.4f} |"
+        if cap:
+            c = by[(f"cap {cap}", frames)]
+            row += f" {c['seconds']:.2f} | {c['rmse_caustic']:.4f} |"
+        out.append(row + f" {s['rmse_all']:.4f} | {f['rmse_all']:.4f} |")
     return "\n".join(out) + "\n"
 
 
@@ -94,6 +110,7 @@ def options(p):
     p.add_argument("--truth-frames", type=int, default=512)
     p.add_argument("--max-frames", type=int, default=256)
     p.add_argument("--photons", type=int, default=100000)
+    p.add_argument("--gather-cap", type=int, default=0)
 
 
 if __name__ == "__main__":

@@ -46,8 +46,9 @@ def run_study(name, doc, measure, tables, add_options=None, check=None):
             json.dump(data, f, indent=2)
             f.write("\n")
     out = os.path.join(args.out, f"{name}.md")
+    text = tables(data)  # before the file is opened: a failure leaves the old one
     with open(out, "w") as f:
-        f.write(tables(data))
+        f.write(text)
     print(f"wrote {out}")
 
 
