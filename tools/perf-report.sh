@@ -70,12 +70,14 @@ section() {
       echo
     fi
     # tools/antialias_study.py, meshes_study.py, real_glass_study.py, caustics_study.py,
-    # frosted_study.py
+    # frosted_study.py; then each one's runs of another configuration (--tag T: STUDY-T.md)
     for study in antialias meshes real_glass caustics frosted; do
-      if [ -f "$dir/$study.md" ]; then
-        cat "$dir/$study.md"
-        echo
-      fi
+      for table in "$dir/$study.md" "$dir/$study"-*.md; do
+        if [ -f "$table" ]; then
+          cat "$table"
+          echo
+        fi
+      done
     done
   done
   [ -f docs/perf/notes.md.in ] && cat docs/perf/notes.md.in

@@ -2,7 +2,9 @@
 tools/antialias_study.py): their command line, their files, and reading
 the chapters' PFM images. A study measures into OUT/NAME.json and
 writes its tables to OUT/NAME.md; --tables-only rewrites the tables from
-the JSON. Standard library only, so the studies run on the GPU machine too.
+the JSON; --tag T names them NAME-T.json and NAME-T.md instead (the same
+study in another configuration, kept beside it). Standard library only, so
+the studies run on the GPU machine too.
 """
 import argparse
 import json
@@ -20,6 +22,7 @@ def run_study(name, doc, measure, tables, add_options=None, check=None):
     p.add_argument("--bin")
     p.add_argument("--out", required=True)
     p.add_argument("--tables-only", action="store_true")
+    p.add_argument("--tag", default="")
     p.add_argument("--width", type=int, default=640)
     p.add_argument("--height", type=int, default=360)
     p.add_argument("--frames", type=int, default=10)
@@ -29,6 +32,10 @@ def run_study(name, doc, measure, tables, add_options=None, check=None):
     args = p.parse_args()
     tool = f"{name}_study.py"
     os.makedirs(args.out, exist_ok=True)
+    if args.tag:
+        if not args.tag.replace("_", "").isalnum():
+            sys.exit(f"{tool}: --tag takes letters, digits and _ only: {args.tag!r}")
+        name = f"{name}-{args.tag}"
     path = os.path.join(args.out, f"{name}.json")
     if args.tables_only:
         with open(path) as f:
