@@ -93,6 +93,8 @@ TEST(Chapter10, TessellatedSpheresConvergeToTheAnalyticOne) {
         EXPECT_LT(rmse, previous) << "level " << level;
         EXPECT_GT(rmse, 1e-5) << "a mesh is not the sphere";
         EXPECT_EQ(report.value("validation_messages", 1), 0);
+        // a sphere drawn as a mesh shades with its interpolated normals (kMeshes)
+        EXPECT_TRUE(report.value("shading_normals", false));
         previous = rmse;
     }
     rgtest::RunResult bad = rgtest::run(RG_EXE_10, {"--headless", "--sphere-mesh", "8"});
@@ -134,6 +136,8 @@ TEST(Chapter10, TwoLaunchesMatchOneLaunch) {
         rgtest::expectCleanReport(autoChoice, "10_refraction", 160, 90);
         EXPECT_EQ(one["launches"], 1);
         EXPECT_EQ(two["launches"], 2);
+        // no meshes: the hits' shading normal is compiled out (kMeshes)
+        EXPECT_FALSE(one.value("shading_normals", true));
         EXPECT_EQ(one["rays_per_frame"], two["rays_per_frame"]);
         const nlohmann::json& trees = one["trees_past_first_hit"];
         uint32_t count = trees["trees"], pixels = trees["pixels"], capacity = trees["queue_capacity"];

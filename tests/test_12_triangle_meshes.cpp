@@ -946,6 +946,7 @@ TEST(Meshes, OneFilePlacedAThousandTimesIsOneBlas) {
     EXPECT_EQ(mesh["triangles"], 320);
     EXPECT_GT(mesh["blas_bytes"].get<double>(), 0);
     EXPECT_EQ(report["acceleration"]["tlas_instances"], 1001);  // and the floor
+    EXPECT_TRUE(report.value("shading_normals", false));  // meshes: kMeshes
     EXPECT_EQ(report["validation_messages"], 0);
     // The report says what made the picture: the chapter's parameters, as run.
     EXPECT_EQ(report["parameters"]["depth"], 6);

@@ -135,7 +135,7 @@ void main() {
         // The surface as the camera rays' tree sees it (ray_tree.glsl's growBranch).
         GpuMaterial m = hitMaterial();
         vec3 n = facingNormal(payload.normal, direction);
-        vec3 ns = facingShading(payload.shading, payload.normal, direction);
+        vec3 ns = hitFacingShading(direction);
         vec3 p = payload.position;
         float e = payload.error, radius = objects[payload.object].radius;
         bool entering = payload.frontFace == 1u;

@@ -20,6 +20,7 @@ void main() {
         gl_ObjectToWorldEXT, payload.normal);
     payload.object = gl_InstanceCustomIndexEXT;
     payload.frontFace = dot(payload.normal, gl_WorldRayDirectionEXT) < 0.0 ? 1u : 0u;
-    payload.shading = payload.normal;  // flat or analytic: one normal
+    // flat or analytic: one normal, read as both where meshes need both
+    if (kMeshes) payload.shading = payload.normal;
 }
 // [end]

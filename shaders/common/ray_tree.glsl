@@ -183,6 +183,12 @@ void oneBranch(uint depth, uint path, inout vec3 refracted, inout vec3 reflected
 #else
 uint childPath(uint path, uint refracted) { return 0u; }
 #endif
+// what a branch's depth field holds besides its depth
+#ifdef MICROFACET
+const uint kBranchFlags = BRANCH_SPECTRAL | BRANCH_PATH_MASK;
+#else
+const uint kBranchFlags = BRANCH_SPECTRAL;
+#endif
 
 void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint rays) {
     // in air (chapter 13)
@@ -197,7 +203,15 @@ void plantTree(vec3 origin, vec3 direction, uint depth, vec3 throughput, uint ra
 // Traces the branch on top of the stack, pushes its own reflected and
 // refracted branches, and adds the light it brings.
 void growBranch() {
-    Branch b = tree.stack[--tree.top];
+    int top = --tree.top;
+    // The ray first, read from the stack; the rest of the branch after the
+    // trace, so that it need not stay alive across it (performance page).
+    // Depth 0: a camera ray.
+    bool camera = (tree.stack[top].depth & ~kBranchFlags) == 0u;
+    traceClosest(tree.stack[top].origin, camera ? eyeTmin() : 0.0,
+                 tree.stack[top].direction, tree.stack[top].tMax,
+                 camera ? 0.0 : tree.coneStart);
+    Branch b = tree.stack[top];
     // chapter 13: its light is one wavelength's
     uint spectral = b.depth & BRANCH_SPECTRAL;
     b.depth &= ~BRANCH_SPECTRAL;
@@ -207,10 +221,7 @@ void growBranch() {
 #else
     uint path = 0u;
 #endif
-    // depth 0: a camera ray
-    traceClosest(b.origin, b.depth == 0u ? eyeTmin() : 0.0, b.direction, b.tMax,
-                 b.depth == 0u ? 0.0 : tree.coneStart);
-    if (b.depth == 0u) tree.coneStart = payload.t;
+    if (camera) tree.coneStart = payload.t;
     ++tree.rays;
     vec3 throughput = b.throughput;
 #ifdef NESTED_MEDIA
@@ -224,7 +235,7 @@ void growBranch() {
     GpuMaterial m = hitMaterial();  // a mesh's texture tints it (ch 12)
     vec3 n = facingNormal(payload.normal, b.direction);
     // = n but on meshes
-    vec3 ns = facingShading(payload.shading, payload.normal, b.direction);
+    vec3 ns = hitFacingShading(b.direction);
     vec3 p = payload.position;
     float e = payload.error;
     float radius = objects[payload.object].radius;  // 0: not a sphere

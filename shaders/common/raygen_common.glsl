@@ -53,6 +53,12 @@ vec3 facingShading(vec3 shading, vec3 normal, vec3 direction) {
     return dot(ns, direction) < 0.0 ? ns : facingNormal(normal, direction);
 }
 // [end]
+// The payload's hit: only meshes write a shading normal of their own, and
+// only in a scene that has them (kMeshes); elsewhere it is the surface's.
+vec3 hitFacingShading(vec3 direction) {
+    return kMeshes ? facingShading(payload.shading, payload.normal, direction)
+                   : facingNormal(payload.normal, direction);
+}
 
 // [region metal_roughness]
 // glTF's metal-roughness model at one hit, as shared/scene/rules.cpp's

@@ -54,6 +54,12 @@ layout(constant_id = 6) const bool kRayCones = false;
 // Specialization constant 7 (rt_pipeline.h's sunDiscs): true only for a
 // scene with a sun of some size (radiometry.glsl's towardLight, chapter 14).
 layout(constant_id = 7) const bool kSunDiscs = false;
+// Specialization constant 8 (rt_pipeline.h's meshes): true only for a
+// scene with triangle meshes (chapter 12), the one shape whose shading
+// normal differs from its surface's. Else no hit writes the payload's
+// shading normal and no ray generation shader reads it (what that saves:
+// docs/performance.md, chapter 10).
+layout(constant_id = 8) const bool kMeshes = true;
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 3.0e38;

@@ -46,6 +46,7 @@ void main() {
     }
     payload.object = index;
     payload.frontFace = gl_HitKindEXT == 0u ? 1u : 0u;
-    payload.shading = payload.normal;  // flat or analytic: one normal
+    // flat or analytic: one normal, read as both where meshes need both
+    if (kMeshes) payload.shading = payload.normal;
 }
 // [end]

@@ -117,6 +117,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         bool rayCones = useRayCones(shaders, scene);
         // a sun's disc is drawn from only where a sun has one (chapter 14)
         bool sunDiscs = useSunDiscs(shaders, scene);
+        // a shading normal of its own only where a mesh brings one (chapter 12)
+        bool meshes = useMeshes(shaders, scene, rt);
         if (chapter.adaptShaders) chapter.adaptShaders(shaders, scene);  // chapter 14
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may
@@ -231,7 +233,8 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                                 {"alpha_test", alphaTest},
                                 {"thin_walls", thinWalls},
                                 {"ray_cones", rayCones},
-                                {"sun_discs", sunDiscs}};
+                                {"sun_discs", sunDiscs},
+                                {"shading_normals", meshes}};
         if (pass.finish) extra.update(pass.finish());
         if (canTwo)
             extra["trees_past_first_hit"] = {{"trees", lastTrees(two)},

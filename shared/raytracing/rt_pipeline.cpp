@@ -17,13 +17,14 @@ RtPipeline createRtPipeline(const Gpu& gpu, DeletionQueue& deletion,
     p.layout =
         createPipelineLayout(gpu, deletion, setLayout, pushConstantBytes, kRtPushStages);
 
-    // Specialization: the driver compiles each stage with constants 0-7
+    // Specialization: the driver compiles each stage with constants 0-8
     // fixed, so branches on them cost nothing (and no registers). One list
     // for every stage: an entry a shader does not declare is ignored.
     uint32_t constants[] = {shaders.raygenConstant, shaders.raygenAverages,
                             shaders.carefulSizes,   shaders.carefulShininess,
                             shaders.alphaTest,      shaders.thinWalls,
-                            shaders.rayCones,       shaders.sunDiscs};
+                            shaders.rayCones,       shaders.sunDiscs,
+                            shaders.meshes};
     constexpr uint32_t kConstants = std::size(constants);
     VkSpecializationMapEntry entries[kConstants];
     for (uint32_t id = 0; id < kConstants; ++id)

@@ -42,6 +42,9 @@ struct RtShaders {
     uint32_t rayCones = 0;
     // Constant 7, kSunDiscs: 1 for a scene with a sun of some size (chapter 14).
     uint32_t sunDiscs = 0;
+    // Constant 8, kMeshes: 1 for a scene with triangle meshes, whose hits
+    // bring a shading normal of their own (chapter 12).
+    uint32_t meshes = 1;
     std::vector<std::string> miss;
     std::vector<HitGroup> hitGroups;
     // where <path>.spv are: empty, bin/shaders (the build's); a reload's folder

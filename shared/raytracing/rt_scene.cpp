@@ -268,6 +268,12 @@ bool useSunDiscs(RtShaders& shaders, const Scene& scene) {
     return any;
 }
 
+bool useMeshes(RtShaders& shaders, const Scene& scene, const RtScene& rt) {
+    bool any = !scene.meshes.empty() || rt.shapes.sphereMesh >= 0;
+    shaders.meshes = any;
+    return any;
+}
+
 bool useRayCones(RtShaders& shaders, const Scene& scene) {
     bool any = false;
     for (const auto& texture : scene.textures) any = any || texture->levels.size() > 1;

@@ -73,6 +73,10 @@ bool useRayCones(RtShaders& shaders, const Scene& scene);
 // sun of some size (chapter 14's angular_radius_deg): the code alone cost
 // chapter 15 10 % of a frame on an H100. Returns whether.
 bool useSunDiscs(RtShaders& shaders, const Scene& scene);
+// Constant 8 (kMeshes): hits write and ray generation shaders read a
+// shading normal only in a scene with meshes (or spheres drawn as one,
+// --sphere-mesh). Returns whether.
+bool useMeshes(RtShaders& shaders, const Scene& scene, const RtScene& rt);
 
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)
