@@ -118,7 +118,7 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
         // a sun's disc is drawn from only where a sun has one (chapter 14)
         bool sunDiscs = useSunDiscs(shaders, scene);
         // a shading normal of its own only where a mesh brings one (chapter 12)
-        bool meshes = useMeshes(shaders, scene, rt);
+        bool meshes = useMeshes(shaders, rt);
         if (chapter.adaptShaders) chapter.adaptShaders(shaders, scene);  // chapter 14
         // A run that never averages frames gets a shader without the jitter
         // and the running mean (rt_bindings.glsl's kAverages): a window may

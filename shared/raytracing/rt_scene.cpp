@@ -268,8 +268,8 @@ bool useSunDiscs(RtShaders& shaders, const Scene& scene) {
     return any;
 }
 
-bool useMeshes(RtShaders& shaders, const Scene& scene, const RtScene& rt) {
-    bool any = !scene.meshes.empty() || rt.shapes.sphereMesh >= 0;
+bool useMeshes(RtShaders& shaders, const RtScene& rt) {
+    bool any = !rt.shapes.meshes.empty();  // the scene's, and --sphere-mesh's icosphere
     shaders.meshes = any;
     return any;
 }

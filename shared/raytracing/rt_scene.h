@@ -76,7 +76,7 @@ bool useSunDiscs(RtShaders& shaders, const Scene& scene);
 // Constant 8 (kMeshes): hits write and ray generation shaders read a
 // shading normal only in a scene with meshes (or spheres drawn as one,
 // --sphere-mesh). Returns whether.
-bool useMeshes(RtShaders& shaders, const Scene& scene, const RtScene& rt);
+bool useMeshes(RtShaders& shaders, const RtScene& rt);
 
 // [region needs_careful]
 // Which of the shaders' branches for extreme numbers (rt_bindings.glsl)
