@@ -39,7 +39,8 @@ def run(exe, size, extra, png):
 
 def modes(cap):
     """(name, options) of each mode; a cap adds the capped shrinking mode."""
-    return MODES + ((f"cap {cap}", ["--alpha", "0.6667", "--gather-cap", str(cap)]),) if cap else MODES
+    shrinking = dict(MODES)["shrinking"]
+    return MODES + ((f"cap {cap}", shrinking + ["--gather-cap", str(cap)]),) if cap else MODES
 
 
 def measure(args):
