@@ -56,7 +56,27 @@ vec3 causticIrradiance(vec3 p, vec3 n) {
         uint count = cells.cells[bucket] - first;
         CellRun run = cellRun(count, p, bucket);
         vec3 cellSum = vec3(0.0);
-        for (uint j = 0u; j < run.count; ++j) {
+        uint j = 0u;
+        // [region gather_batch]
+        // Performance (the performance page measures it): where a caustic
+        // focuses, this loop runs thousands of times, and each pass waits for
+        // its photon's load. Four loads asked for at once, then tested in the
+        // same order: the same sum, one wait per four photons.
+        for (; j + 4u <= run.count; j += 4u) {
+            Photon batch[4];
+            for (uint b = 0u; b < 4u; ++b) {
+                uint i = run.start + j + b;
+                batch[b] = sorted.photons[first + (i < count ? i : i - count)];
+            }
+            for (uint b = 0u; b < 4u; ++b) {
+                vec3 d = batch[b].position - p;
+                if (dot(d, d) < r * r &&
+                    dot(unpackSnorm4x8(batch[b].normal).xyz, n) > 0.0)
+                    cellSum += batch[b].power;
+            }
+        }
+        // [end]
+        for (; j < run.count; ++j) {
             uint i = run.start + j;
             Photon photon = sorted.photons[first + (i < count ? i : i - count)];
             vec3 d = photon.position - p;
