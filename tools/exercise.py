@@ -24,6 +24,8 @@ import re
 import shutil
 import sys
 
+import docs  # tools/docs.py: the tagged regions, read one way
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
@@ -45,24 +47,21 @@ def starter(chapter):
 
 
 def replace_region(source, region, body, name):
-    """The lines between '// [region NAME]' and its '// [end]', replaced by
-    `body` indented as the tag is. Regions nest (tools/docs.py): an inner
-    region's '// [end]' does not close this one."""
+    """The lines between '// [region NAME]' and its '// [end]' (regions
+    nest, as tools/docs.py reads them), replaced by `body` indented as the
+    tag is."""
     lines = source.split("\n")
-    for i, line in enumerate(lines):
-        if line.strip() == f"// [region {region}]":
-            indent = line[: len(line) - len(line.lstrip())]
-            depth = 1
-            for j in range(i + 1, len(lines)):
-                if lines[j].strip().startswith("// [region "):
-                    depth += 1
-                elif lines[j].strip() == "// [end]":
-                    depth -= 1
-                    if depth == 0:
-                        new = [indent + l if l else l for l in body.rstrip("\n").split("\n")]
-                        return "\n".join(lines[: i + 1] + new + lines[j:])
-            fail(f"{name}: region {region} has no '// [end]'")
-    fail(f"{name}: no region {region}")
+    try:
+        spans = docs.regions(name, lines)
+    except docs.DocsError as error:
+        fail(str(error))
+    if region not in spans:
+        fail(f"{name}: no region {region}")
+    first, end = spans[region]
+    tag = lines[first - 1]
+    indent = tag[: len(tag) - len(tag.lstrip())]
+    new = [indent + l if l else l for l in body.rstrip("\n").split("\n")]
+    return "\n".join(lines[:first] + new + lines[end:])
 
 
 def main(argv):
