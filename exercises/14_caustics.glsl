@@ -7,9 +7,10 @@
 // bucket cellHash gives; after the scatter, bucket b's photons are
 // sorted.photons[b == 0 ? 0 : cells.cells[b - 1]] up to cells.cells[b]. The
 // 2x2x2 cubes nearest p, from floor(p / (2r) - 0.5), hold every photon
-// within r; read a bucket that two of them share once.
+// within r; read a bucket that two of them share once. (`scale`, what the
+// caller multiplies E by, is for a performance trick: leave it unused.)
 // Until it is written, every shadow of glass is black.
-vec3 causticIrradiance(vec3 p, vec3 n) {
+vec3 causticIrradiance(vec3 p, vec3 n, vec3 scale) {
     if (push.photonMap == uvec2(0u)) return vec3(0.0);
     PhotonMapRef map = PhotonMapRef(push.photonMap);
     uint cellCount = map.header.cellCount;

@@ -275,6 +275,10 @@ struct RtPush {
     // chapter 14's --gather-cap: a gather reads at most this many photons of a
     // cell, a random run of them weighted up (0: all; gather.glsl)
     uint gatherCap;
+    // chapter 14's --gather-defer: a cell holding more photons than this is
+    // gathered by a compute pass after the camera rays (gather.glsl's
+    // gather_defer; 0: every cell where it is met)
+    uint gatherDefer;
     // chapter 15's --roulette: past maxDepth a branch goes on as one path,
     // ended by Russian roulette, up to this many bounces (<= maxDepth: cut)
     uint maxPathDepth;
@@ -282,7 +286,7 @@ struct RtPush {
     // surface sends one branch on, chosen by the shares (ray_tree.glsl)
     uint oneRoughBranch;
 };
-RG_SIZE(RtPush, 100);
+RG_SIZE(RtPush, 104);
 #define ROULETTE_MAX_DEPTH 64u  // --roulette on: a path's last possible bounce
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
@@ -385,9 +389,28 @@ struct PhotonMapHeader {
     // the fates of the frame's photons, counted (the report; energy tests):
     uint escaped;       // left the scene
     uint lost;          // stopped by the bounce or pass limit
-    uint unused0, unused1;
+    // --gather-defer (gather.glsl's gather_defer): the crowded cells' gathers
+    // the camera rays left for gather_deferred.comp this frame (atomic; may
+    // pass deferCapacity: those past it were gathered in place)
+    uint deferred;
+    uint deferCapacity;
+    uvec2 requests;     // GatherRequest[deferCapacity]
+    uvec2 heads;        // uint[target pixels]: a pixel's last request (~0u: none)
 };
-RG_SIZE(PhotonMapHeader, 64);
+RG_SIZE(PhotonMapHeader, 80);
+
+// A crowded cell's gather, left by a camera ray for gather_deferred.comp:
+// the point, its normal, the cell's bucket, and what the ray multiplies the
+// irradiance by; the pass replaces `scale` with the light it brings.
+struct GatherRequest {
+    vec3 position;
+    uint bucket;
+    vec3 normal;
+    uint pixel;  // y * the target's width + x
+    vec3 scale;
+    uint next;   // the same pixel's request before this one (~0u: none)
+};
+RG_SIZE(GatherRequest, 48);
 
 // The grid's compute shaders' push constants.
 struct GridPush {
@@ -396,6 +419,14 @@ struct GridPush {
     uint unused;
 };
 RG_SIZE(GridPush, 16);
+// gather_deferred.comp's and gather_resolve.comp's push constants
+struct DeferPush {
+    uvec2 photonMap;
+    float radius;        // this frame's gathering radius
+    float resolveScale;  // the light's factor into the picture: exposure / frames
+};
+RG_SIZE(DeferPush, 16);
+#define DEFER_GROUP_SIZE 64  // invocations that share one deferred gather
 #define GRID_GROUP_SIZE 128  // invocations per workgroup (every device has 128)
 // the prefix sum's buckets per invocation, and per workgroup (grid_scan.comp)
 #define GRID_SCAN_RUN 8

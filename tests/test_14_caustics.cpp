@@ -575,6 +575,48 @@ TEST(Chapter14, CappedGatherKeepsTheMean) {
 }
 // [end]
 
+// --gather-defer (gather.glsl's gather_defer, a performance trick): the
+// crowded cells of the ball lens's focus, gathered by a compute pass after
+// the camera rays, give the picture the camera rays give reading them in
+// place (the same photons and test; only the sum's order differs), also
+// averaged over frames and at another exposure, which the pass scales by.
+// At 16 photons a cell the requests outgrow their room (one per pixel),
+// and the camera rays gather the rest in place: the same picture again.
+TEST(Chapter14, DeferredGatherIsTheSameSum) {
+    std::string dir = rgtest::outputDir("14_gather_defer");
+    const double n = 1.5, f = n / (2 * (n - 1));
+    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
+    ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
+    std::string path = writeScene(dir, "ball", ball);
+    std::vector<std::string> common = {"--frames", "4", "--photons", "200000", "--exposure", "1"};
+    auto run = [&](const std::string& defer) {
+        std::vector<std::string> args = common;
+        args.insert(args.end(), {"--gather-defer", defer});
+        return render(path, dir + "/defer_" + defer, 96, 96, args);
+    };
+    Rendered inPlace = run("0");
+    EXPECT_EQ(inPlace.report["photons"]["gathers_deferred_last_frame"], 0);
+    for (const char* defer : {"64", "16"}) {
+        Rendered deferred = run(defer);
+        const nlohmann::json& photons = deferred.report["photons"];
+        int done = photons["gathers_deferred_last_frame"], wanted = photons["gathers_deferred_wanted_last_frame"];
+        double worst = 0, brightest = 0;
+        for (size_t i = 0; i < inPlace.image.rgba.size(); ++i) {
+            double a = inPlace.image.rgba[i], b = deferred.image.rgba[i];
+            brightest = std::max(brightest, a);
+            worst = std::max(worst, std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-3}));
+        }
+        std::printf("--gather-defer %s: %d gathers deferred of %d wanted (room for %d); largest relative "
+                    "difference %.3g, brightest %.3g\n",
+                    defer, done, wanted, 96 * 96, worst, brightest);
+        EXPECT_GT(done, 1000) << "the focus is crowded";
+        if (std::string(defer) == "64") EXPECT_EQ(done, wanted) << "all of them fit";
+        else EXPECT_EQ(done, 96 * 96) << "more than fit: " << wanted;
+        EXPECT_GT(brightest, 1.0) << "the focus is in the picture";
+        EXPECT_LT(worst, 1e-4) << "--gather-defer " << defer;
+    }
+}
+
 // Page 14's other scenes, read off their pictures: a glass of water and a
 // mirror ring each focus the sun brighter than the open floor (twice it),
 // and nothing of it is left with --caustics off.

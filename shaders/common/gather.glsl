@@ -4,6 +4,7 @@
 #ifndef GATHER_GLSL
 #define GATHER_GLSL
 #include "photon_map.glsl"
+#include "raygen_common.glsl"  // the target: its width numbers the pixels
 #include "sampling.glsl"
 
 // [region gather_cap]
@@ -28,14 +29,39 @@ CellRun cellRun(uint count, vec3 p, uint bucket) {
 }
 // [end]
 
+// [region gather_defer]
+// Performance (the performance page measures it; --gather-defer 0 turns it
+// off): the pixels where a caustic focuses read thousands of photons each,
+// one after another, while the rest of the GPU has finished and waits for
+// them. A cell holding more than push.gatherDefer photons is instead left
+// to a compute pass after the camera rays (gather_deferred.comp), where 64
+// invocations share each such cell's photons: the same photons, the same
+// test, the same sum (in another order). The pass adds scale times their
+// irradiance to the pixel. Off with --gather-cap, which reads a run instead.
+bool deferGather(uint count, vec3 p, vec3 n, vec3 scale, uint bucket) {
+    if (push.gatherDefer == 0u || push.gatherCap != 0u || count <= push.gatherDefer)
+        return false;
+    PhotonMapRef map = PhotonMapRef(push.photonMap);
+    uint q = atomicAdd(map.header.deferred, 1u);
+    if (q >= map.header.deferCapacity) return false;  // full: gathered here instead
+    uint pixel = gl_LaunchIDEXT.y * uint(imageSize(target).x) + gl_LaunchIDEXT.x;
+    uint next = atomicExchange(HeadsRef(map.header.heads).heads[pixel], q);
+    RequestsRef(map.header.requests).requests[q] =
+        GatherRequest(p, bucket, n, pixel, scale, next);
+    return true;
+}
+// [end]
+
 // [region gather]
 // E(p) = sum of the photons' power within r of p / (pi r^2), counting only
 // photons that arrived on the side n faces (a thin wall's other side is
 // another surface). The 2x2x2 cells nearest p hold every photon within r
 // (a cell is 2r wide); two of them may share a bucket, which is read once.
 // cellRun gives all of a cell's photons, or a random run of a crowded
-// cell's, weighted up (gather_cap above: a performance trick).
-vec3 causticIrradiance(vec3 p, vec3 n) {
+// cell's, weighted up (gather_cap above: a performance trick). `scale` is
+// what the caller multiplies E by: a crowded cell left to a later pass
+// (gather_defer above, another) brings its light to the pixel with it.
+vec3 causticIrradiance(vec3 p, vec3 n, vec3 scale) {
     if (push.photonMap == uvec2(0u)) return vec3(0.0);
     PhotonMapRef map = PhotonMapRef(push.photonMap);
     uint cellCount = map.header.cellCount;
@@ -54,6 +80,7 @@ vec3 causticIrradiance(vec3 p, vec3 n) {
         if (again) continue;
         uint first = bucket == 0u ? 0u : cells.cells[bucket - 1u];
         uint count = cells.cells[bucket] - first;
+        if (deferGather(count, p, n, scale, bucket)) continue;
         CellRun run = cellRun(count, p, bucket);
         vec3 cellSum = vec3(0.0);
         uint j = 0u;

@@ -17,6 +17,13 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer PhotonsRef 
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer CellsRef {
     uint cells[];
 };
+// --gather-defer's requests, and each pixel's last one (gather.glsl)
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer RequestsRef {
+    GatherRequest requests[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer HeadsRef {
+    uint heads[];
+};
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer
 EmittersRef {
     PhotonEmitter emitters[];

@@ -360,9 +360,10 @@ void growBranch() {
         tree.radiance += throughput * directLight(m, p, e, n, ns, -b.direction, s.local,
                                                   s.highlight, tree.rays);
 #endif
-    if (s.local > 0.0)
-        tree.radiance +=
-            throughput * s.local * m.kd.rgb / kPi * causticIrradiance(p, n);
+    if (s.local > 0.0) {
+        vec3 scale = throughput * s.local * m.kd.rgb / kPi;
+        tree.radiance += scale * causticIrradiance(p, n, scale);
+    }
     // [end]
 #else
     if (s.highlight > 0.0)  // >= local: the local model's two parts with their shares

@@ -201,10 +201,12 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
             else
                 recordTrace(cmd, pipeline, rt.descriptors.set, &push, sizeof(push),
                             size.width, size.height);
+            if (pass.after) pass.after(cmd, push, shaders.raygenAverages);
         });
         // closed while moving: the PNG, the report and --reference get a full frame
         if (viewer.previewed()) {
             last.accumulated = 0;
+            last.gatherDefer = 0;  // chapter 14: every cell in place, no pass after
             submitOnce(app.gpu, [&](VkCommandBuffer cmd) {
                 memoryBarrier(cmd,
                               VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR |

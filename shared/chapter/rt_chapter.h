@@ -54,6 +54,11 @@ struct FramePass {
     // the camera rays read (the photon map's address, the radius).
     std::function<void(VkCommandBuffer cmd, gpu::RtPush& push, FrameChange change)>
         record;
+    // Records what follows the frame's camera rays, given their push
+    // constants and whether they average frames (chapter 14's deferred
+    // gathers add their light to the picture).
+    std::function<void(VkCommandBuffer cmd, const gpu::RtPush& push, bool averages)>
+        after;
     // After the last frame: writes what the pass keeps (chapter 14's
     // --photons-ply) and returns its part of the run's report.
     std::function<nlohmann::json()> finish;

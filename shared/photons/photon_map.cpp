@@ -130,6 +130,14 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     emitters.resize(std::max<size_t>(emitters.size(), 1));  // a buffer is never empty
     map.emitters = createDeviceBuffer(gpu, deletion, emitters.data(),
                                       emitters.size() * sizeof emitters[0], usage);
+    // --gather-defer: room for one crowded cell's request per pixel (at
+    // most 2^21, 96 MiB: lavapipe's storage buffers stop at 128 MiB); a
+    // camera ray that finds no room gathers the cell itself.
+    uint32_t pixels = c.rt.width * c.rt.height;
+    map.deferCapacity = std::min(pixels, 1u << 21);
+    map.requests = deviceBuffer(VkDeviceSize(map.deferCapacity) *
+                                sizeof(gpu::GatherRequest));
+    map.heads = deviceBuffer(VkDeviceSize(pixels) * sizeof(uint32_t));
     auto address = [](const Buffer& b) {
         return gpu::uvec2(uint32_t(b.address), uint32_t(b.address >> 32));
     };
@@ -140,7 +148,10 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
                                 .photons = address(map.photons),
                                 .sorted = address(map.sorted),
                                 .cells = address(map.cells),
-                                .emitters = address(map.emitters)};
+                                .emitters = address(map.emitters),
+                                .deferCapacity = map.deferCapacity,
+                                .requests = address(map.requests),
+                                .heads = address(map.heads)};
     map.header = createDeviceBuffer(gpu, deletion, &header, sizeof header, usage);
 
     // The photons' ray generation shader, with the camera rays' hit groups.
@@ -163,6 +174,11 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
                                         "14_caustics/grid_scan_add.comp");
     map.scatter = createComputePipeline(gpu, deletion, map.gridLayout,
                                         "14_caustics/grid_scatter.comp");
+    // --gather-defer's two (their push constants, DeferPush, are as long)
+    map.deferred = createComputePipeline(gpu, deletion, map.gridLayout,
+                                         "14_caustics/gather_deferred.comp");
+    map.resolve = createComputePipeline(gpu, deletion, map.gridLayout,
+                                        "14_caustics/gather_resolve.comp");
     return map;
 }
 // [end]
@@ -227,6 +243,56 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
         memoryBarrier(cmd, compute, VK_ACCESS_SHADER_WRITE_BIT, compute | rtStage,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }
+}
+// [end]
+
+// [region defer]
+// --gather-defer (gather.glsl's gather_defer, a performance trick): the
+// camera rays leave their crowded cells as requests, a list per pixel.
+void recordDeferReset(VkCommandBuffer cmd, const PhotonMap& map) {
+    constexpr VkPipelineStageFlags shaders =
+        VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR |
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    constexpr VkAccessFlags readWrite =
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    // the last frame's camera rays and passes are done with the lists
+    memoryBarrier(cmd, shaders, readWrite, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, map.header.handle, offsetof(gpu::PhotonMapHeader, deferred),
+                    sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, map.heads.handle, 0, VK_WHOLE_SIZE, ~0u);  // no requests
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  shaders, readWrite);
+}
+
+// After the camera rays: 64 invocations gather each request, then each
+// pixel adds its requests' light to the picture.
+void recordDeferredGathers(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& rt,
+                           float radius, float resolveScale) {
+    constexpr VkPipelineStageFlags rtStage = VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                                   compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    constexpr VkAccessFlags readWrite =
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    memoryBarrier(cmd, rtStage, readWrite, compute, readWrite);
+    gpu::DeferPush push{.photonMap = {uint32_t(map.header.address),
+                                      uint32_t(map.header.address >> 32)},
+                        .radius = radius,
+                        .resolveScale = resolveScale};
+    vkCmdPushConstants(cmd, map.gridLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                       &push);
+    // Workgroups loop over the requests, however many the frame left: a
+    // few thousand fill any GPU (the GPU reads the count, the host never).
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map.deferred);
+    vkCmdDispatch(cmd, std::min(map.deferCapacity, 4096u), 1, 1);
+    memoryBarrier(cmd, compute, VK_ACCESS_SHADER_WRITE_BIT, compute,
+                  VK_ACCESS_SHADER_READ_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map.resolve);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, map.gridLayout, 0, 1,
+                            &rt.descriptors.set, 0, nullptr);
+    vkCmdDispatch(cmd, (rt.width + 7) / 8, (rt.height + 7) / 8, 1);
+    // The picture's next readers wait for the ray tracing stage (the frame
+    // loop, the viewer, the PNG): chained to it, they wait for this too.
+    memoryBarrier(cmd, compute, readWrite, rtStage, readWrite);
 }
 // [end]
 

@@ -34,6 +34,9 @@ struct PhotonSettings {
     // --gather-cap: photons read of one cell at most (0: all; the
     // performance page measures it)
     int gatherCap = 0;
+    // --gather-defer: a cell with more photons than this is gathered by a
+    // compute pass after the camera rays (0: every cell in place)
+    int gatherDefer = 64;
     float lastRadius = 0;  // the last frame's radius (the report)
     bool kept = false;     // the last frame reused the map before it (the overlay)
 };
@@ -45,7 +48,8 @@ std::vector<gpu::PhotonEmitter> photonEmitters(const Scene& scene);
 // a header that holds their device addresses (PhotonMapHeader).
 struct PhotonMap {
     Buffer header, photons, sorted, cells, emitters;
-    uint32_t capacity = 0, cellCount = 0, emitterCount = 0;
+    Buffer requests, heads;  // --gather-defer's requests, each pixel's last one
+    uint32_t capacity = 0, cellCount = 0, emitterCount = 0, deferCapacity = 0;
     RtPipeline tracer;  // the photons' ray generation shader with the scene's hit groups
     uint32_t traced = 0;  // maps traced in this run (the report)
     float radius = 0;     // the radius of the map traced last (0: none yet)
@@ -53,6 +57,8 @@ struct PhotonMap {
     // count, prefix sum (three steps), scatter
     VkPipeline count = VK_NULL_HANDLE, scan = VK_NULL_HANDLE, scanBlocks = VK_NULL_HANDLE,
                scanAdd = VK_NULL_HANDLE, scatter = VK_NULL_HANDLE;
+    // --gather-defer: the crowded cells' gathers, then each pixel's sum
+    VkPipeline deferred = VK_NULL_HANDLE, resolve = VK_NULL_HANDLE;
 };
 // `photonShader`: the photons' ray generation shader ("14_caustics/photon.rgen").
 PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& settings,
@@ -62,6 +68,12 @@ void pointAtPhotonMap(gpu::RtPush& push, const PhotonMap& map, uint32_t photons,
                       float radius);
 void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& rt,
                      gpu::RtPush& push, uint32_t photons, float radius);
+// --gather-defer: before the camera rays, no requests yet; after them, the
+// requests gathered and their light added to the picture (`resolveScale`:
+// the exposure over the frames averaged, as the camera rays write it).
+void recordDeferReset(VkCommandBuffer cmd, const PhotonMap& map);
+void recordDeferredGathers(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& rt,
+                           float radius, float resolveScale);
 
 // The last frame's photon map's counts, and with `withPhotons` its stored
 // photons too (--photons-ply), copied to the host (waits for the GPU).

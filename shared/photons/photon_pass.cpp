@@ -49,6 +49,11 @@ void declarePhotonOptions(Params& params, PhotonSettings& photons) {
                    "Photons a gather reads of one cell at most, a random run of them "
                    "weighted up (0: all; a performance trick, see the performance page)",
                    0, 1 << 30);
+    params.integer("--gather-defer", photons.gatherDefer,
+                   "A cell with more photons than this is gathered after the camera rays "
+                   "by 64 invocations at once (0: in place; a performance trick, see the "
+                   "performance page)",
+                   0, 1 << 30);
     params
         .text("--photons-ply", photons.ply,
               "Write the last frame's photons to this PLY point cloud")
@@ -108,6 +113,8 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
         push.caustics = CAUSTICS_PHOTONS;
         push.photonSeed = uint32_t(photons.seed);
         push.gatherCap = uint32_t(photons.gatherCap);
+        push.gatherDefer = uint32_t(photons.gatherDefer);
+        recordDeferReset(cmd, *map);
         photons.lastRadius = frameRadius(photons, change.accumulated);
         // The map does not depend on the camera: while only the view moves
         // (every such frame starts a new average, at the first radius), the
@@ -123,6 +130,13 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
         map->radius = photons.lastRadius;
         ++map->traced;
     };
+    // after the camera rays: the crowded cells they left (--gather-defer)
+    pass.after = [map, &rt, &photons](VkCommandBuffer cmd, const gpu::RtPush& push,
+                                      bool averages) {
+        if (push.gatherDefer == 0 || push.gatherCap != 0) return;
+        float frames = averages ? float(push.accumulated + 1) : 1.0f;
+        recordDeferredGathers(cmd, *map, rt, push.photonRadius, push.exposure / frames);
+    };
     pass.finish = [map, &app, &scene, &photons] {
         LastPhotons last = readPhotons(app.gpu, app.deletion, *map, !photons.ply.empty());
         if (!photons.ply.empty()) writePhotonsPly(photons.ply, last.stored, scene.origin);
@@ -132,13 +146,18 @@ FramePass photonPass(const FramePassContext& c, PhotonSettings& photons,
                                 {"stored_last_frame", last.header.stored},
                                 {"escaped_last_frame", last.header.escaped},
                                 {"lost_last_frame", last.header.lost},
+                                {"gathers_deferred_last_frame",
+                                 std::min(last.header.deferred, map->deferCapacity)},
+                                {"gathers_deferred_wanted_last_frame",
+                                 last.header.deferred},
                                 {"maps_traced", map->traced},
                                 {"emitters", map->emitterCount},
                                 {"grid_cells", map->cellCount},
                                 {"first_radius", photons.radius},
                                 {"last_radius", photons.lastRadius},
                                 {"alpha", photons.alpha},
-                                {"gather_cap", photons.gatherCap}}}};
+                                {"gather_cap", photons.gatherCap},
+                                {"gather_defer", photons.gatherDefer}}}};
     };
     // the window's overlay: how fast photons go, and the radius now
     pass.overlay = [&photons](double gpuMs) {

@@ -377,8 +377,9 @@ RtScene uploadScene(const Gpu& gpu, DeletionQueue& deletion, const Scene& scene,
         {
             {RT_BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR,
              VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+            // and chapter 14's gather_resolve.comp
             {RT_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-             VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+             VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_COMPUTE_BIT},
             {RT_BINDING_CAMERA, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rt_stages},
             {RT_BINDING_OBJECTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
             {RT_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rt_stages},
