@@ -532,6 +532,15 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
 }
 // [end]
 
+// A glass ball lens in the sun with its focus on the floor, seen from
+// above: the crowded cells of the performance tricks' tests.
+std::string focusSeenFromAbove(const std::string& dir) {
+    const double n = 1.5, f = n / (2 * (n - 1));
+    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
+    ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
+    return writeScene(dir, "ball", ball);
+}
+
 // [region gather_cap]
 // The capped gather (gather.glsl's cellRun) reads a random run of a crowded
 // cell's photons, weighted up: its mean is the full gather's. The ball
@@ -545,10 +554,7 @@ TEST(Chapter14, TransmittedShadowsAreRightForASlabAndWrongForALens) {
 // 0.991 to 1.006 in eight.
 TEST(Chapter14, CappedGatherKeepsTheMean) {
     std::string dir = rgtest::outputDir("14_gather_cap");
-    const double n = 1.5, f = n / (2 * (n - 1));
-    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
-    ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
-    std::string path = writeScene(dir, "ball", ball);
+    std::string path = focusSeenFromAbove(dir);
     std::vector<std::string> common = {"--frames", "32", "--photons", "200000", "--alpha", "1"};
     auto with = [&](std::vector<std::string> extra) {
         extra.insert(extra.end(), common.begin(), common.end());
@@ -584,10 +590,7 @@ TEST(Chapter14, CappedGatherKeepsTheMean) {
 // and the camera rays gather the rest in place: the same picture again.
 TEST(Chapter14, DeferredGatherIsTheSameSum) {
     std::string dir = rgtest::outputDir("14_gather_defer");
-    const double n = 1.5, f = n / (2 * (n - 1));
-    nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
-    ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
-    std::string path = writeScene(dir, "ball", ball);
+    std::string path = focusSeenFromAbove(dir);
     std::vector<std::string> common = {"--frames", "4", "--photons", "200000", "--exposure", "1"};
     auto run = [&](const std::string& defer) {
         std::vector<std::string> args = common;
