@@ -697,7 +697,7 @@ TEST(Chapter14, PointLightFallsOffAsInverseSquare) {
             {"materials", {{"floor", {{"ka", 0}, {"kd", 0.5}}}}},
             {"objects",
              {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {5, 0, 0}}, {"v", {0, 0, -5}}, {"material", "floor"}}}}};
-        std::string name = "h" + std::to_string(int(h));
+        std::string name = std::string("h").append(std::to_string(int(h)));
         Rendered run = render(writeScene(dir, name, scene), dir + "/" + name, 32, 32, {"--frames", "1"});
         double L = centreMean(run.image, 2).g, E = 10 / (4 * kPi * h * h);
         EXPECT_NEAR(L / (0.5 / kPi * E), 1.0, 0.003) << "h " << h;

@@ -18,10 +18,15 @@ chapters=(01_vulkan_setup 02_synchronization 03_acceleration_structures 04_rayge
           14_caustics 15_frosted_glass)
 units=(test_sphere_intersection test_sbt test_fresnel test_sampling test_scene_fuzz test_faults test_12_triangle_meshes)
 echo "== sanitizer build in $build (ASan + UBSan, -O1)"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON >/dev/null ||
+. tools/lib/configure.sh  # rg_configure
+rg_configure "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DRG_SANITIZE=ON ||
   exit 1
 cmake --build "$build" -j "$(nproc)" --target "${chapters[@]}" "${units[@]}" >"$build/sanitize-build.log" 2>&1 ||
   { tail -n 30 "$build/sanitize-build.log"; exit 1; }
+if grep -q "warning:" "$build/sanitize-build.log"; then
+  echo "FAILED: the sanitizer build printed warnings:"; grep "warning:" "$build/sanitize-build.log" | sort -u | head -n 20
+  exit 1
+fi
 
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:exitcode=23"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=23"

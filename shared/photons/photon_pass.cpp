@@ -66,7 +66,7 @@ void declarePhotonOptions(Params& params, PhotonSettings& photons) {
 // glass (transmit.glsl), and the shadow rays their own miss shader.
 void adaptShaders(const PhotonSettings& photons, RtShaders& shaders) {
     if (photons.caustics != PhotonSettings::kTransmit) return;
-    shaders.miss.push_back("14_caustics/transmit.rmiss");  // MISS_TRANSMIT
+    shaders.miss.emplace_back("14_caustics/transmit.rmiss");  // MISS_TRANSMIT
     shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_QUAD).anyHit =
         "14_caustics/transmit_triangle.rahit";
     shaders.hitGroups.at(RAY_TYPE_SHADOW + HIT_GROUP_MESH).anyHit =

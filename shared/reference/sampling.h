@@ -14,6 +14,11 @@ using namespace glm;
 using std::sqrt;
 using uint = std::uint32_t;
 const float kPi = 3.14159265358979323846f;
+// A file that includes this calls some of the shader file's functions, not
+// all of them; the rest are not a mistake here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
 #include "sampling.glsl"
+#pragma GCC diagnostic pop
 }  // namespace
 }  // namespace shader

@@ -182,11 +182,12 @@ std::vector<const char*> requiredDeviceExtensions(bool present) {
 
 namespace {
 
-// Everything `device` lacks for this tutorial, empty when it fits.
-std::vector<std::string> missingRequirements(VkPhysicalDevice device,
+// Everything `device` lacks for this tutorial, empty when it fits: names
+// that live as long as the program (literals and the extension macros).
+std::vector<const char*> missingRequirements(VkPhysicalDevice device,
                                              VkSurfaceKHR surface,
                                              uint32_t& queueFamily) {
-    std::vector<std::string> missing;
+    std::vector<const char*> missing;
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(device, &properties);
     if (properties.apiVersion < VK_API_VERSION_1_2) missing.push_back("Vulkan 1.2");
@@ -279,13 +280,13 @@ PhysicalDeviceChoice pickPhysicalDevice(VkInstance instance, VkSurfaceKHR surfac
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devices[i], &p);
         uint32_t queue = 0;
-        std::vector<std::string> missing =
+        std::vector<const char*> missing =
             missingRequirements(devices[i], surface, queue);
         std::string line = "  [" + std::to_string(i) + "] " + p.deviceName;
         if (missing.empty()) line += ": fits";
         else {
             line += ": lacks";
-            for (const auto& m : missing) line += " " + m;
+            for (const char* m : missing) line.append(" ").append(m);
         }
         report += line + "\n";
         bool eligible =
