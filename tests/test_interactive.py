@@ -45,6 +45,8 @@ import time
 import numpy as np
 from PIL import Image
 
+from timescale import seconds as scaled  # a wait's limit on a busy machine
+
 EXE, OUT, SCENE = (os.path.abspath(a) for a in sys.argv[1:4])
 FULL = "--full" in sys.argv[4:]
 RELOAD = "--reload" in sys.argv[4:]
@@ -93,7 +95,8 @@ def start_xvfb(fbdir):
             continue
         proc = subprocess.Popen(["Xvfb", f":{display}", "-screen", "0", "800x600x24", "-fbdir", fbdir,
                                  "-nolisten", "tcp"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        for _ in range(50):
+        end = time.time() + scaled(5)
+        while time.time() < end:
             if os.path.exists(os.path.join(fbdir, "Xvfb_screen0")) and os.path.exists(f"/tmp/.X11-unix/X{display}"):
                 return proc, f":{display}"
             if proc.poll() is not None:
@@ -154,8 +157,8 @@ def write_png(path, rows):
 
 def shot_when(condition, what, seconds=20):
     """Screenshots until `condition(shot)` holds (a loaded machine renders
-    slowly: no fixed sleeps); records a failure after `seconds`."""
-    end = time.time() + seconds
+    slowly: no fixed sleeps); records a failure after `seconds`, scaled."""
+    end = time.time() + scaled(seconds)
     while True:
         shot = window_shot(BOX)
         if condition(shot):
@@ -170,7 +173,7 @@ def stable_shot(seconds=60):
     """A screenshot once the window shows a picture and three in a row, over
     a second, agree (a loaded machine may show one frame for half a second)."""
     previous, agreeing = window_shot(BOX), 0
-    end = time.time() + seconds
+    end = time.time() + scaled(seconds)
     while time.time() < end:
         time.sleep(0.5)
         shot = window_shot(BOX)
@@ -186,7 +189,7 @@ def stable_shot(seconds=60):
 def settled_shot(seconds=30):
     """The window once two shots half a second apart agree: past a slow
     machine's short preview at a smaller size (viewer.h)."""
-    previous, end = window_shot(BOX), time.time() + seconds
+    previous, end = window_shot(BOX), time.time() + scaled(seconds)
     while time.time() < end:
         time.sleep(0.5)
         shot = window_shot(BOX)
@@ -216,7 +219,7 @@ def key(box, name):
 
 
 def wait_for(text, log, seconds=10):
-    end = time.time() + seconds
+    end = time.time() + scaled(seconds)
     while time.time() < end:
         with open(log) as f:
             if text in f.read():
@@ -308,7 +311,7 @@ try:
                 f.write(text)
 
         def reloads(count):
-            end = time.time() + 60
+            end = time.time() + scaled(60)
             while time.time() < end:
                 if open(log).read().count("shaders: reloaded") >= count:
                     return True
@@ -547,7 +550,7 @@ try:
     else:
         key(box, "Escape")
     try:
-        code = chapter.wait(timeout=10)
+        code = chapter.wait(timeout=scaled(10))
     except subprocess.TimeoutExpired:
         chapter.kill()
         code = None
@@ -574,7 +577,7 @@ finally:
         chapter.kill()
     xvfb.terminate()  # lets it remove its lock file and socket
     try:
-        xvfb.wait(timeout=5)
+        xvfb.wait(timeout=scaled(5))
     except subprocess.TimeoutExpired:
         xvfb.kill()
     shutil.rmtree(FBDIR, ignore_errors=True)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Every command a chapter page prints in a ```sh block is run as printed,
-so that a page cannot show a command that fails.
+"""Every command a chapter page (or the README) prints in a ```sh block is
+run as printed, so that a page cannot show a command that fails.
 
 Each block runs as one bash script (set -e) in a fresh folder that looks
 like the repository's root: assets/, tests/, tools/ and docs/ are the
@@ -18,12 +18,16 @@ import json
 import os
 import pathlib
 import re
+import signal
 import subprocess
 import sys
 import tempfile
 
+from timescale import seconds as scaled  # a block's limit on a busy machine
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-SKIPPED = ("cmake ", "ctest ")  # they build and test the tree this test runs in
+# they install, build and test the tree this test runs in
+SKIPPED = ("cmake ", "ctest ", "tools/setup.sh", "tools/test.sh")
 
 
 def blocks(markdown):
@@ -70,8 +74,21 @@ def run_block(block, bin_dir, seen):
         folder = pathlib.Path(work)
         make_root(folder, bin_dir)
         env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
-        r = subprocess.run(["bash", "-c", "set -euo pipefail\n" + script], cwd=folder, env=env,
-                           capture_output=True, text=True, timeout=240)
+        # bash traces each command it starts into a file: a block that runs
+        # past its limit is reported with the command that was running.
+        trace = folder / "trace.txt"
+        prologue = f"exec 9>'{trace}'; BASH_XTRACEFD=9; set -x -euo pipefail\n"
+        limit = scaled(240)
+        with subprocess.Popen(["bash", "-c", prologue + script], cwd=folder, env=env, text=True,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True) as p:
+            try:
+                stdout, stderr = p.communicate(timeout=limit)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)  # bash and the chapter it runs
+                p.communicate()
+                started = [l for l in trace.read_text().splitlines() if l.startswith("+ ")]
+                return [f"timed out after {limit:.0f} s in `{started[-1][2:] if started else script}`"]
+        r = subprocess.CompletedProcess(p.args, p.returncode, stdout, stderr)
         problems = []
         if r.returncode != 0:
             tail = (r.stdout + r.stderr).strip().splitlines()[-3:]
@@ -101,6 +118,7 @@ def main(page, bin_dir):
     page, bin_dir = pathlib.Path(page), pathlib.Path(bin_dir).resolve()
     failures, ran, seen = [], 0, set()
     for block in blocks(page.read_text()):
+        print(f"run: {block.strip().splitlines()[0]}", flush=True)
         problems = run_block(block, bin_dir, seen)
         if problems is None:
             continue

@@ -74,7 +74,8 @@ git ls-files -z -co --exclude-standard | tar -c --null --ignore-failed-read -T -
 
 env_vars=(HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8
           NODE_EXTRA_CA_CERTS=/etc/ssl/certs/ca-certificates.crt
-          TERM="${TERM:-dumb}" CI="${CI:-}" RG_SANITIZE="${RG_SANITIZE:-}")
+          TERM="${TERM:-dumb}" CI="${CI:-}" RG_SANITIZE="${RG_SANITIZE:-}"
+          RG_TEST_TIME_SCALE="${RG_TEST_TIME_SCALE:-}")
 exec unshare --mount --propagation private -- bash -c '
   set -e
   root=$1; shift

@@ -3,20 +3,25 @@
 # chapter headless with validation, writing each chapter's PNG and JSON
 # report into one folder (default: out/) and printing one line per chapter,
 # builds the docs site into out/site/ (tools/site.sh) and prints it as the
-# ebook out/rayglass.pdf (tools/ebook.py).
+# ebook out/rayglass.pdf (tools/ebook.py). It builds the chapters only;
+# tools/test.sh builds the tests.
 #
-#   tools/setup.sh [--deps-only] [--out DIR] [--build DIR]
+#   tools/setup.sh [--deps-only] [--no-docs] [--out DIR] [--build DIR]
 #
-# Idempotent: installed packages are skipped. Uses sudo when not root.
+# --no-docs leaves out the site, the ebook and the packages only they need
+# (CI's Debian 13 part). Idempotent: installed packages are skipped. Uses
+# sudo when not root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 deps_only=0
+docs=1
 out=out
 build=build
 while [ $# -gt 0 ]; do
   case "$1" in
     --deps-only) deps_only=1 ;;
+    --no-docs) docs=0 ;;
     --out) out="$2"; shift ;;
     --build) build="$2"; shift ;;
     *) echo "setup.sh: unknown argument $1" >&2; exit 2 ;;
@@ -24,11 +29,13 @@ while [ $# -gt 0 ]; do
   shift
 done
 
-packages=(cmake g++ make pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
+packages=(cmake g++ make ninja-build pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
-          mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
-          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev poppler-utils python3-pil python3-numpy fonts-dejavu-core
-          nodejs)
+          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev python3-pil python3-numpy nodejs)
+# the site, its browser tests and the ebook
+docs_packages=(mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
+               poppler-utils fonts-dejavu-core)
+[ "$docs" -eq 0 ] || packages+=("${docs_packages[@]}")
 # The Khronos glTF validator (a test runs it on every glTF file the project
 # writes): from the npm registry into .node/, a pinned version.
 gltf_validator=gltf-validator@2.0.0-dev.3.10
@@ -119,12 +126,14 @@ if [ ! -f .node/node_modules/gltf-validator/package.json ]; then
 fi
 [ "$deps_only" -eq 1 ] && exit 0
 
-echo "== building in $build"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j "$(nproc)"
+echo "== building the chapters in $build"
+. tools/lib/configure.sh  # rg_configure
+rg_configure "$build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j "$(nproc)" --target chapters
 
 status=0
 tools/run-all.sh --build "$build" --out "$out" || status=1
+[ "$docs" -eq 1 ] || exit $status
 echo "== building the docs site"
 tools/site.sh --out "$out/site" || status=1
 echo "== printing the ebook"
