@@ -8,8 +8,8 @@
 #
 #   tools/setup.sh [--deps-only] [--no-docs] [--out DIR] [--build DIR]
 #
-# --no-docs leaves out the site, the ebook and the packages only they need
-# (CI's Debian 13 part). Idempotent: installed packages are skipped. Uses
+# --no-docs leaves out the site, the ebook, the glTF validator (one test of
+# the full suite) and the packages only they need (CI's Debian 13 part). Idempotent: installed packages are skipped. Uses
 # sudo when not root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,10 +31,10 @@ done
 
 packages=(cmake g++ make ninja-build pkg-config jq libvulkan-dev vulkan-validationlayers glslang-tools libglfw3-dev libx11-dev
           libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libgtest-dev xvfb xauth gnuplot-nox python3
-          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev python3-pil python3-numpy nodejs)
-# the site, its browser tests and the ebook
+          libimgui-dev xdotool libtinygltf-dev libtinyobjloader-dev python3-pil python3-numpy)
+# the site, its browser tests, the ebook and the glTF validator
 docs_packages=(mkdocs mkdocs-material python3-pymdownx libjs-katex chromium chromium-driver python3-selenium
-               poppler-utils fonts-dejavu-core)
+               poppler-utils fonts-dejavu-core nodejs)
 [ "$docs" -eq 0 ] || packages+=("${docs_packages[@]}")
 # The Khronos glTF validator (a test runs it on every glTF file the project
 # writes): from the npm registry into .node/, a pinned version.
@@ -116,7 +116,7 @@ install_deps() {
 }
 
 install_deps
-if [ ! -f .node/node_modules/gltf-validator/package.json ]; then
+if [ "$docs" -eq 1 ] && [ ! -f .node/node_modules/gltf-validator/package.json ]; then
   # Debian's npm, unless a Node.js from elsewhere brought its own
   command -v npm >/dev/null || "${sudo_cmd[@]}" apt-get install -y -q npm
   echo "== npm: $gltf_validator into .node/"
