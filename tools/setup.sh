@@ -9,8 +9,8 @@
 #   tools/setup.sh [--deps-only] [--no-docs] [--out DIR] [--build DIR]
 #
 # --no-docs leaves out the site, the ebook, the glTF validator (one test of
-# the full suite) and the packages only they need (CI's Debian 13 part). Idempotent: installed packages are skipped. Uses
-# sudo when not root.
+# the full suite) and the packages only they need (CI's Debian 13 part).
+# Idempotent: installed packages are skipped. Uses sudo when not root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -30,7 +30,9 @@ fi
 export RG_TEST_TIME_SCALE
 echo "== test time scale: $RG_TEST_TIME_SCALE (RG_TEST_TIME_SCALE)"
 
+took() { echo "== $1 took $(((SECONDS - $2) / 60)) min $(((SECONDS - $2) % 60)) s"; }
 . tools/lib/configure.sh  # rg_configure
+start=$SECONDS
 rg_configure build -DCMAKE_BUILD_TYPE=Release
 status=0
 targets=()
@@ -40,20 +42,27 @@ cmake --build build -j "$(nproc)" "${targets[@]}" 2>&1 | tee build/build.log || 
 # files it compiled again.
 if grep -E "warning:|WARNING:" build/build.log >/dev/null; then
   echo "== FAILED: the build printed $(grep -cE "warning:|WARNING:" build/build.log) warning(s):"
-  grep -E "warning:|WARNING:" build/build.log | sort -u | head -n 20
+  grep -E "warning:|WARNING:" build/build.log | sort -u | sed -n 1,20p
   status=1
 fi
 [ "$status" -eq 0 ] || exit 1
+took "the build" "$start"
 
 sanitize=${RG_SANITIZE:-$([ $# -eq 0 ] && [ "$system" -eq 0 ] && echo 1 || echo 0)}
 if [ "$sanitize" = 1 ]; then
+  start=$SECONDS
   tools/sanitize.sh || status=1
+  took "the sanitizer pass" "$start"
 fi
+start=$SECONDS
 ctest_args=("$@")
 [ "$system" -eq 0 ] || ctest_args=(-L "$(cat build/system_labels.txt)" -LE '^docs$' "$@")
 ctest --test-dir build -j "$(nproc)" --output-on-failure "${ctest_args[@]}" 2>&1 | tee build/ctest.log ||
   status=1
+took ctest "$start"
 echo "== the ten slowest tests"
+# sed reads to the end, where head would quit early and leave sort a broken
+# pipe (a failure under pipefail)
 grep -E "^ *[0-9]+/[0-9]+ Test +#" build/ctest.log | sed -E 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: //' |
-  awk '{ printf "%8.1f s  %s\n", $(NF - 1), $1 }' | sort -rn | head -n 10
+  awk '{ printf "%8.1f s  %s\n", $(NF - 1), $1 }' | sort -rn | sed -n 1,10p
 exit $status
