@@ -70,6 +70,7 @@ def run_block(block, bin_dir, seen):
     script = "\n".join(lines)
     if not script.strip():
         return None
+    print(f"run: {script.strip().splitlines()[0]}", flush=True)
     with tempfile.TemporaryDirectory(prefix="rayglass-page-") as work:
         folder = pathlib.Path(work)
         make_root(folder, bin_dir)
@@ -118,7 +119,6 @@ def main(page, bin_dir):
     page, bin_dir = pathlib.Path(page), pathlib.Path(bin_dir).resolve()
     failures, ran, seen = [], 0, set()
     for block in blocks(page.read_text()):
-        print(f"run: {block.strip().splitlines()[0]}", flush=True)
         problems = run_block(block, bin_dir, seen)
         if problems is None:
             continue
