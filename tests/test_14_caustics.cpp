@@ -119,6 +119,35 @@ TEST(Chapter14, SlabPassesFresnelAndAbsorptionInsideTheSum) {
 }
 // [end]
 
+// A ball of index 1 and no absorption changes no ray: it must vanish, its
+// shadow as bright as the open floor (E = 1 under the sun overhead, kd = 1:
+// L = 1 / pi). In photon mode the shadow ray stops at any glass, so the
+// light there is the photons' (once they were never stored: passing an
+// unreal boundary did not count as meeting glass, and the shadow was
+// black); in transmit mode the shadow rays pass it with Fresnel's 1 - R = 1.
+// The CPU reference, which shares the photon rule, is held to the same.
+TEST(Chapter14, AnIndexOneBallCastsNoShadow) {
+    std::string dir = rgtest::outputDir("14_index_one");
+    nlohmann::json scene = sunScene(
+        {0, -1, 0},
+        {{"floor", {{"ka", 0}, {"kd", 1}}}, {"air", {{"ka", 0}, {"kd", 0}, {"ks", 0}, {"transmission", 1}, {"ior", 1}}}},
+        {{{"type", "quad"}, {"center", {0, 0, 0}}, {"u", {3, 0, 0}}, {"v", {0, 0, -3}}, {"material", "floor"}},
+         {{"type", "sphere"}, {"center", {0, 0.4, 0}}, {"radius", 0.25}, {"material", "air"}}});
+    std::string path = writeScene(dir, "ball", scene);
+    Rendered photons = render(path, dir + "/photons", 96, 96,
+                              {"--frames", "24", "--photons", "200000", "--radius", "0.05", "--alpha", "1",
+                               "--reference", "--reference-photons", "400"});
+    Rendered transmit = render(path, dir + "/transmit", 96, 96, {"--frames", "1", "--caustics", "transmit"});
+    rg::FloatImage reference = rg::readPfm(dir + "/photons_reference.pfm");
+    const std::pair<const char*, const rg::FloatImage*> runs[] = {
+        {"photons", &photons.image}, {"transmit", &transmit.image}, {"reference", &reference}};
+    for (auto [name, image] : runs) {
+        glm::dvec3 E = centreMean(*image, 16) * kPi;  // under the ball: E = pi L / kd
+        std::printf("%s: the shadow's irradiance %.4f %.4f %.4f of the open floor's\n", name, E.r, E.g, E.b);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(E[c], 1.0, 0.01) << name << " channel " << c;
+    }
+}
+
 // A parallel beam through a ball (radius 1, n = 1.5, centre at the origin,
 // light going down), traced in double in the plane of the axis: each ray
 // splits at every surface by the exact Fresnel equations, and whatever
@@ -539,6 +568,58 @@ std::string focusSeenFromAbove(const std::string& dir) {
     nlohmann::json ball = ballLensScene({0.5, -1, 0}, n, f);
     ball["camera"] = {{"position", {2.2, 4, 0.01}}, {"look_at", {0.75, 0, 0}}, {"fov_y_deg", 40}};
     return writeScene(dir, "ball", ball);
+}
+
+// --photon-seed draws another, independent set of photons (issue: seed N
+// once shifted seed 0's stream of frames by N, and reused all but N of its
+// photon sets). The ball lens's focus at a fixed radius, so that each frame
+// is an independent estimate: two seeds' pictures differ alike whichever
+// two seeds they are, and as independent averages do, by 1/sqrt(frames)
+// (frames 4 to 16: half), where a shared stream differs by 1/frames or less.
+TEST(Chapter14, PhotonSeedsDrawIndependentPhotons) {
+    std::string dir = rgtest::outputDir("14_photon_seed");
+    std::string path = focusSeenFromAbove(dir);
+    auto run = [&](int seed, int frames) {
+        std::string stem = dir + "/seed" + std::to_string(seed) + "_" + std::to_string(frames);
+        return render(path, stem, 48, 48,
+                      {"--frames", std::to_string(frames), "--photons", "20000", "--alpha", "1",
+                       "--photon-seed", std::to_string(seed)})
+            .image;
+    };
+    auto rms = [](const rg::FloatImage& a, const rg::FloatImage& b) {
+        double sum = 0;
+        for (size_t i = 0; i < a.rgba.size(); i += 4) sum += std::pow(a.rgba[i + 1] - b.rgba[i + 1], 2);
+        return std::sqrt(sum / double(a.rgba.size() / 4));
+    };
+    rg::FloatImage s0 = run(0, 4), s1 = run(1, 4), s2 = run(2, 4), far = run(1000000, 4);
+    double d01 = rms(s0, s1), d12 = rms(s1, s2), d0far = rms(s0, far);
+    double d01x16 = rms(run(0, 16), run(1, 16));
+    std::printf("RMS difference at 4 frames: seeds 0-1 %.4g, 1-2 %.4g, 0-1000000 %.4g; seeds 0-1 at 16 frames %.4g\n",
+                d01, d12, d0far, d01x16);
+    ASSERT_GT(d0far, 0) << "another seed, other photons";
+    EXPECT_NEAR(d01 / d0far, 1.0, 0.3) << "seeds 0 and 1 as far apart as 0 and 1000000";
+    EXPECT_NEAR(d12 / d0far, 1.0, 0.3) << "seeds 1 and 2 as far apart as 0 and 1000000";
+    EXPECT_NEAR(d01x16 / d01, 0.5, 0.15) << "independent frames: four times the frames, half the difference";
+}
+
+// Every count --photons accepts runs validation-clean: the grid's
+// dispatches stay within maxComputeWorkGroupCount at the largest (a
+// dispatch of one workgroup per 128 buckets once broke above 2,097,152
+// photons), and the smallest still fills its prefix sum's one block.
+TEST(Chapter14, EveryAcceptedPhotonCountRuns) {
+    std::string dir = rgtest::outputDir("14_photon_counts");
+    for (const char* photons : {"1000", "4000000"}) {
+        std::string stem = dir + "/photons_" + photons;
+        rgtest::RunResult r = rgtest::run(RG_EXE_14, {"--headless", "--validation", "--width", "16", "--height", "9",
+                                                      "--frames", "1", "--photons", photons, "--output", stem + ".png"});
+        ASSERT_EQ(r.exitCode, 0) << "--photons " << photons << ": " << r.output;
+        nlohmann::json report = rgtest::readJson(stem + ".json");
+        EXPECT_EQ(report["validation_messages"], 0) << "--photons " << photons;
+        EXPECT_EQ(report["photons"]["emitted_per_frame"], std::stoi(photons));
+        EXPECT_GT(report["photons"]["stored_last_frame"], 0) << "--photons " << photons;
+    }
+    rgtest::RunResult over = rgtest::run(RG_EXE_14, {"--headless", "--photons", "4000001", "--output", dir + "/over.png"});
+    EXPECT_EQ(over.exitCode, 2) << over.output;
 }
 
 // [region gather_cap]

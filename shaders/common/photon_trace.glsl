@@ -112,7 +112,13 @@ void storePhoton(vec3 p, vec3 n, vec3 power) {
 }
 
 void main() {
-    rng = pcgHash(gl_LaunchIDEXT.x ^ pcgHash(push.frame + 0x9E3779B9u + push.photonSeed));
+    // --photon-seed picks a stream of photon sets: the frame counter XOR a
+    // pattern from the seed's hash (0 for seed 0; pcgHash is a bijection, so
+    // distinct seeds give distinct patterns). Two seeds' runs of F frames
+    // share a set with a chance of about F^2 / 2^32; adding the seed to the
+    // frame, as before, made seed N reuse all but N of seed 0's sets.
+    uint stream = pcgHash(push.photonSeed) ^ pcgHash(0u);
+    rng = pcgHash(gl_LaunchIDEXT.x ^ pcgHash((push.frame + 0x9E3779B9u) ^ stream));
     vec3 origin, direction, power;
     emitPhoton(origin, direction, power);
     uint media = 0u;  // lights are in air
@@ -150,6 +156,9 @@ void main() {
                 origin = secondaryOrigin(p, e, -n);
                 tMax = entering ? insideReach(origin, p, radius) : kInfinity;
                 media = boundary.beyond;
+                // still glass to the shadow rays, which stop at it: the light
+                // beyond (an index-1 ball's whole shadow) is the photons'
+                specular = true;
                 if (++passes > MAX_PASSES) break;
                 continue;
             }

@@ -2,9 +2,11 @@
 #include "photons/photon_map.h"
 
 #include "app/app.h"
+#include "core/files.h"
 #include "raytracing/rt_scene.h"
 #include "scene/scene.h"
 #include "vulkan/descriptors.h"
+#include "vulkan/device_limits.h"
 #include "vk_check.h"
 
 #include <algorithm>
@@ -101,6 +103,34 @@ std::vector<gpu::PhotonEmitter> photonEmitters(const Scene& scene) {
 }
 // [end]
 
+namespace {
+// --photons against the device's limits, before any work: the photon
+// launch (one ray a photon), the grid's dispatches and the photon buffers.
+void checkPhotonsFit(const Gpu& gpu, const PhotonMap& map) {
+    const VkPhysicalDeviceLimits& k = gpu.physical.properties.limits;
+    uint64_t photons = map.capacity;
+    uint64_t photonGroups = (photons + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
+    uint64_t groups = std::max<uint64_t>(photonGroups, map.cellCount / GRID_SCAN_BLOCK);
+    uint64_t widest =
+        uint64_t(k.maxComputeWorkGroupCount[0]) * k.maxComputeWorkGroupSize[0];
+    std::string storage;
+    double bufferBytes = storageBufferLimit(gpu, &storage);
+    std::string broken;
+    uint64_t launch = gpu.physical.rayTracing.maxRayDispatchInvocationCount;
+    if (photons > launch || photons > widest)
+        broken = "the photon launch's width (maxRayDispatchInvocationCount, "
+                 "maxComputeWorkGroupCount x maxComputeWorkGroupSize)";
+    else if (groups > k.maxComputeWorkGroupCount[0])
+        broken = "maxComputeWorkGroupCount (" +
+                 std::to_string(k.maxComputeWorkGroupCount[0]) + " workgroups)";
+    else if (double(photons) * sizeof(gpu::Photon) > bufferBytes)
+        broken = storage + " (" + mebibytes(bufferBytes) + " in the photon buffer)";
+    if (!broken.empty())
+        throw InputError("--photons " + std::to_string(photons) +
+                         " is too many for this device: " + broken);
+}
+}  // namespace
+
 // [region photon_map]
 // The photon map's buffers (photon_map.h's PhotonMap), its photon tracer
 // and its grid's three compute shaders.
@@ -112,7 +142,8 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     // A caustic photon lands on a diffuse surface at most once: room for all.
     map.capacity = uint32_t(settings.photons);
     // About two cells per photon, a power of two (the hash's last bits).
-    map.cellCount = std::bit_ceil(std::max(2u * map.capacity, 1024u));
+    map.cellCount = std::bit_ceil(std::max(2u * map.capacity, uint32_t(GRID_SCAN_BLOCK)));
+    checkPhotonsFit(gpu, map);
     const VkBufferUsageFlags usage =
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
         VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
@@ -230,13 +261,12 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     gpu::GridPush grid{.photonMap = push.photonMap, .cellSize = 2 * radius};
     vkCmdPushConstants(cmd, map.gridLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof grid,
                        &grid);
-    // workgroups: one per GRID_GROUP_SIZE photons, buckets, or prefix-sum block
+    // workgroups: one per GRID_GROUP_SIZE photons, or per prefix-sum block
     uint32_t photonGroups = (map.capacity + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
-    uint32_t cellGroups = map.cellCount / GRID_GROUP_SIZE;
+    uint32_t blocks = map.cellCount / GRID_SCAN_BLOCK;
     const std::pair<VkPipeline, uint32_t> steps[] = {
-        {map.count, photonGroups},      {map.scan, map.cellCount / GRID_SCAN_BLOCK},
-        {map.scanBlocks, 1},            {map.scanAdd, cellGroups},
-        {map.scatter, photonGroups}};
+        {map.count, photonGroups}, {map.scan, blocks},         {map.scanBlocks, 1},
+        {map.scanAdd, blocks},     {map.scatter, photonGroups}};
     for (auto [stage, groups] : steps) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, stage);
         vkCmdDispatch(cmd, groups, 1, 1);

@@ -190,9 +190,10 @@ void ReferencePhotons::trace(const ReferenceSettings& settings, glm::dvec3 origi
         Crossing c =
             crossingAt(scene, media, scene.objects[hit.object].material, entering);
         if (!c.real) {  // no surface: on into the new media
+            // still glass to the shadow rays: what passes is the photons' light
             if (passes < kMaxPasses)
                 trace(settings, renderer_.secondaryOrigin(p, hit.error, -n), direction,
-                      power, c.beyond, specular, bounces, passes + 1, key);
+                      power, c.beyond, true, bounces, passes + 1, key);
             return;
         }
         n1 = mediumIor(scene, c.from), n2 = mediumIor(scene, c.to), beyond = c.beyond;
