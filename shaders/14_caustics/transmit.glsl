@@ -2,9 +2,11 @@
 // a shadow ray's way. The ray is not bent: each glass surface it crosses
 // passes the Fresnel share 1 - F (from air into the glass, at the line's own
 // angle, as at both faces of a pane), the glass between absorbs
-// (Beer-Lambert), and anything else stops it. Cheap, and right for a flat
-// pane; but nothing is focused, so a ball's shadow is a dim disc where the
-// photons make a bright spot (docs/14_caustics.md).
+// (Beer-Lambert), and anything else stops it. Cheap, and right for a clear
+// pane (a coloured one only facing the light: at an angle the straight
+// chord is longer than the refracted one); but nothing is focused, so a
+// ball's shadow is a dim disc where the photons make a bright spot
+// (docs/14_caustics.md).
 #ifndef TRANSMIT_GLSL
 #define TRANSMIT_GLSL
 #include "rt_bindings.glsl"
