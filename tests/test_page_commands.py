@@ -22,6 +22,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 
 from timescale import seconds as scaled  # a block's limit on a busy machine
 
@@ -80,6 +81,7 @@ def run_block(block, bin_dir, seen):
         trace = folder / "trace.txt"
         prologue = f"exec 9>'{trace}'; BASH_XTRACEFD=9; set -x -euo pipefail\n"
         limit = scaled(240)
+        start = time.monotonic()
         with subprocess.Popen(["bash", "-c", prologue + script], cwd=folder, env=env, text=True,
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True) as p:
             try:
@@ -90,6 +92,7 @@ def run_block(block, bin_dir, seen):
                 started = [l for l in trace.read_text().splitlines() if l.startswith("+ ")]
                 return [f"timed out after {limit:.0f} s in `{started[-1][2:] if started else script}`"]
         r = subprocess.CompletedProcess(p.args, p.returncode, stdout, stderr)
+        print(f"  took {time.monotonic() - start:.1f} s", flush=True)
         problems = []
         if r.returncode != 0:
             tail = (r.stdout + r.stderr).strip().splitlines()[-3:]
