@@ -104,13 +104,23 @@ std::vector<gpu::PhotonEmitter> photonEmitters(const Scene& scene) {
 // [end]
 
 namespace {
+// The grid's workgroups (recordPhotonMap's dispatches): one per
+// GRID_GROUP_SIZE photons, or per prefix-sum block of GRID_SCAN_BLOCK buckets.
+struct GridGroups {
+    uint32_t photons, blocks;
+};
+GridGroups gridGroups(const PhotonMap& map) {
+    return {(map.capacity + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE,
+            map.cellCount / GRID_SCAN_BLOCK};
+}
+
 // --photons against the device's limits, before any work: the photon
 // launch (one ray a photon), the grid's dispatches and the photon buffers.
 void checkPhotonsFit(const Gpu& gpu, const PhotonMap& map) {
     const VkPhysicalDeviceLimits& k = gpu.physical.properties.limits;
     uint64_t photons = map.capacity;
-    uint64_t photonGroups = (photons + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
-    uint64_t groups = std::max<uint64_t>(photonGroups, map.cellCount / GRID_SCAN_BLOCK);
+    GridGroups grid = gridGroups(map);
+    uint32_t groups = std::max(grid.photons, grid.blocks);
     uint64_t widest =
         uint64_t(k.maxComputeWorkGroupCount[0]) * k.maxComputeWorkGroupSize[0];
     std::string storage;
@@ -262,11 +272,10 @@ void recordPhotonMap(VkCommandBuffer cmd, const PhotonMap& map, const RtScene& r
     vkCmdPushConstants(cmd, map.gridLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof grid,
                        &grid);
     // workgroups: one per GRID_GROUP_SIZE photons, or per prefix-sum block
-    uint32_t photonGroups = (map.capacity + GRID_GROUP_SIZE - 1) / GRID_GROUP_SIZE;
-    uint32_t blocks = map.cellCount / GRID_SCAN_BLOCK;
+    GridGroups groups = gridGroups(map);
     const std::pair<VkPipeline, uint32_t> steps[] = {
-        {map.count, photonGroups}, {map.scan, blocks},         {map.scanBlocks, 1},
-        {map.scanAdd, blocks},     {map.scatter, photonGroups}};
+        {map.count, groups.photons}, {map.scan, groups.blocks},       {map.scanBlocks, 1},
+        {map.scanAdd, groups.blocks}, {map.scatter, groups.photons}};
     for (auto [stage, groups] : steps) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, stage);
         vkCmdDispatch(cmd, groups, 1, 1);
