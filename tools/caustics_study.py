@@ -12,9 +12,12 @@ OUT/caustics.md.
 
 On the default scene (caustics.json). The "converged" picture is the
 chapter's own after N frames of 4 P photons each with the shrinking radius,
-drawn independently of the runs' photons (--photon-seed):
+drawn independently of the runs' photons (--photon-seed 1):
 a consistent estimate, so its bias and noise are the smallest of all the
-runs (the CPU reference is not used: its dense photon grid grows sparse at
+runs. Its own noise is measured too, against a second such picture
+(--photon-seed 2): their RMSE over sqrt(2) is one picture's noise, which
+an independent truth adds to every run's RMSE (in quadrature); the tables
+give each shrinking-radius RMSE with it taken out as well (the CPU reference is not used: its dense photon grid grows sparse at
 the small radii of late frames, page 14). Then 1, 2, 4, ... M frames of P
 photons, each mode: the RMSE (linear) over the caustic pixels (where the
 converged picture differs from --caustics off by more than 1/255 in
@@ -24,6 +27,7 @@ reading at most C photons a cell (chapter 14's performance trick), whose
 frames cost less and carry more noise; the converged picture reads them all.
 Standard library only, so it runs on the GPU machine too.
 """
+import math
 import os
 import tempfile
 
@@ -55,12 +59,17 @@ def measure(args):
                                        "--photon-seed", "1"], os.path.join(tmp, "truth.png"))
         data["device"], data["driver"] = truth_report["device"], truth_report["driver"]
         truth = read_pfm(os.path.join(tmp, "truth.pfm"))
+        run(exe, size, ["--frames", str(args.truth_frames), "--photons", str(4 * args.photons),
+                        "--photon-seed", "2"], os.path.join(tmp, "truth2.png"))
+        truth2 = read_pfm(os.path.join(tmp, "truth2.pfm"))
         run(exe, size, ["--frames", "1", "--caustics", "off"], os.path.join(tmp, "off.png"))
         off = read_pfm(os.path.join(tmp, "off.pfm"))
         n = truth[2]
         caustic = [i for i in range(size[0] * size[1])
                    if max(abs(srgb(truth[3][n * i + c]) - srgb(off[3][n * i + c])) for c in range(3)) * 255 > 1]
         data["caustic_pixels"] = len(caustic)
+        data["truth_noise"] = rmse(truth, truth2, caustic) / math.sqrt(2)
+        print(f"  the converged picture's own noise over the caustic: {data['truth_noise']:.5f}")
         # the scale a relative error is read against (issue 47: "1 % RMSE")
         data["caustic_mean"] = (sum(truth[3][n * i + c] for i in caustic for c in range(3)) /
                                 max(1, 3 * len(caustic)))
@@ -89,8 +98,15 @@ def tables(data):
            f"{4 * data['photons']} photons with the shrinking radius, over the {data['caustic_pixels']} "
            "caustic pixels (and over all pixels)" +
            (f"; their mean radiance is {data['caustic_mean']:.4f}, so 1 % of it is "
-            f"{data['caustic_mean'] / 100:.4f}" if "caustic_mean" in data else "") + ".\n"]
-    head = "| frames | seconds (shrinking) | RMSE, shrinking radius | RMSE, fixed radius |"
+            f"{data['caustic_mean'] / 100:.4f}" if "caustic_mean" in data else "") +
+           (f"; the converged picture's own noise there is {data['truth_noise']:.4f} (against a second "
+            "one drawn with other photons), taken out of the shrinking radius's RMSE in quadrature "
+            "in the column \"less the truth's noise\"" if "truth_noise" in data else "") + ".\n"]
+    noise = data.get("truth_noise")
+    head = "| frames | seconds (shrinking) | RMSE, shrinking radius |"
+    if noise is not None:
+        head += " less the truth's noise |"
+    head += " RMSE, fixed radius |"
     if cap:
         head += f" seconds (cap {cap}) | RMSE, shrinking, cap {cap} |"
     out += [head + " all pixels, shrinking | all pixels, fixed |",
@@ -98,7 +114,10 @@ def tables(data):
     by = {(r["mode"], r["frames"]): r for r in data["runs"]}
     for frames in sorted({r["frames"] for r in data["runs"]}):
         s, f = by[("shrinking", frames)], by[("fixed", frames)]
-        row = f"| {frames} | {s['seconds']:.2f} | {s['rmse_caustic']:.4f} | {f['rmse_caustic']:.4f} |"
+        row = f"| {frames} | {s['seconds']:.2f} | {s['rmse_caustic']:.4f} |"
+        if noise is not None:
+            row += f" {math.sqrt(max(0.0, s['rmse_caustic'] ** 2 - noise ** 2)):.4f} |"
+        row += f" {f['rmse_caustic']:.4f} |"
         if cap:
             c = by[(f"cap {cap}", frames)]
             row += f" {c['seconds']:.2f} | {c['rmse_caustic']:.4f} |"
