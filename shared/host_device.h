@@ -287,7 +287,7 @@ struct RtPush {
     uint oneRoughBranch;
 };
 RG_SIZE(RtPush, 104);
-#define ROULETTE_MAX_DEPTH 64u  // --roulette on: a path's last possible bounce
+#define ROULETTE_MAX_DEPTH 4095u  // --roulette on: a path's last bounce (page 15)
 #define CAUSTICS_OFF 0u       // glass stops shadow rays: black shadows
 #define CAUSTICS_PHOTONS 1u   // photons carry the light that passes glass
 #define CAUSTICS_TRANSMIT 2u  // shadow rays pass glass unbent (transmit.glsl)
@@ -328,6 +328,20 @@ struct Branch {
 RG_SIZE(Branch, 48);
 // chapter 13: the branch has met dispersion, its light is one wavelength's
 #define BRANCH_SPECTRAL 0x80000000u
+// chapter 15: the branch's path from the camera ray, a bit per bounce (1:
+// refracted), between its depth (up to 4095, below) and BRANCH_SPECTRAL
+#define BRANCH_PATH_SHIFT 12u
+#define BRANCH_PATH_MASK 0x0FFFF000u
+// The name a branch's sample points are drawn by (ray_tree.glsl): its depth
+// and path laid out as when the depth had 8 bits, so pictures made then
+// stay the same; deeper branches share bits, which only renames them.
+RG_INLINE uint branchName(uint depth, uint path) {
+    return depth | (path >> (BRANCH_PATH_SHIFT - 8u));
+}
+#ifdef __cplusplus
+static_assert(ROULETTE_MAX_DEPTH < (1u << BRANCH_PATH_SHIFT),
+              "a branch's depth fits below its path");
+#endif
 
 // A pixel whose ray tree goes on past its first hit, queued by chapter 10's
 // first launch for the second.

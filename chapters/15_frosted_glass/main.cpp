@@ -46,18 +46,19 @@ rg::FramePass withCompensation(rg::FramePass pass, const rg::FramePassContext& c
 struct PathOptions {
     int roulette = 0;       // on
     int roughBranches = 1;  // one
+    int maxBounces = int(ROULETTE_MAX_DEPTH);
 };
 rg::FramePass withPathOptions(rg::FramePass pass, const PathOptions& o) {
     auto record = pass.record;
     pass.record = [=, &o](VkCommandBuffer cmd, rg::gpu::RtPush& push,
                           rg::FrameChange change) {
-        if (o.roulette == 0) push.maxPathDepth = ROULETTE_MAX_DEPTH;  // "on"
+        if (o.roulette == 0) push.maxPathDepth = uint32_t(o.maxBounces);  // "on"
         push.oneRoughBranch = o.roughBranches == 1;
         if (record) record(cmd, push, change);
     };
     auto reference = pass.reference;
     pass.reference = [=, &o](rg::ReferenceSettings& r) {
-        r.maxPathDepth = o.roulette == 0 ? int(ROULETTE_MAX_DEPTH) : 0;
+        r.maxPathDepth = o.roulette == 0 ? o.maxBounces : 0;
         r.oneRoughBranch = o.roughBranches == 1;
         if (reference) reference(r);
     };
@@ -96,6 +97,10 @@ int main(int argc, char** argv) {
                           "Past --depth, let one path go on until Russian roulette "
                           "ends it, or cut the light off there",
                           {"on", "off"});
+            params.integer("--max-bounces", paths.maxBounces,
+                           "With --roulette on, the bounce at which a path ends if "
+                           "roulette has not ended it (page 15)",
+                           1, int(ROULETTE_MAX_DEPTH));
             params.choice("--rough-branches", paths.roughBranches,
                           "Past the camera ray's hit, a rough surface sends both "
                           "branches on (the ray tree) or one, chosen by their shares",

@@ -119,13 +119,13 @@ Tree tree;
 // not from the frame an average began on: an average started again (the
 // view moved back) draws the same facets, and so does the reference.
 #define FACET_STREAM 0xFACE75EDu  // no frame number reaches it
-#define BRANCH_PATH_SHIFT 8u
-#define BRANCH_PATH_MASK 0x00FFFF00u
+// (BRANCH_PATH_SHIFT and _MASK: host_device.h)
 uint childPath(uint path, uint refracted) {
     return ((path << 1u) | (refracted << BRANCH_PATH_SHIFT)) & BRANCH_PATH_MASK;
 }
 vec2 branchSample(uint depth, uint path) {
-    return sobolPoint(push.accumulated, pcgHash(tree.seed ^ pcgHash(depth | path)));
+    uint sequence = pcgHash(tree.seed ^ pcgHash(branchName(depth, path)));
+    return sobolPoint(push.accumulated, sequence);
 }
 // [end]
 
@@ -141,8 +141,8 @@ vec2 branchSample(uint depth, uint path) {
 // Names past 16 bounces keep their last 16 turns (BRANCH_PATH_MASK).
 #define ROULETTE_SALT 0x0B0E7712u  // the choice's sequence, beside the facet's
 vec2 choicePoint(uint depth, uint path) {
-    return sobolPoint(push.accumulated,
-                      pcgHash(tree.seed ^ pcgHash(depth | path)) ^ ROULETTE_SALT);
+    uint sequence = pcgHash(tree.seed ^ pcgHash(branchName(depth, path)));
+    return sobolPoint(push.accumulated, sequence ^ ROULETTE_SALT);
 }
 // One child instead of two, u in [0,1): the refracted with probability
 // t / (t + r), else the reflected, carrying both children's light.

@@ -70,7 +70,8 @@ Compensation compensation(const ReferenceSettings& settings, const Material& m,
 glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                         uint32_t path) {
     // the GPU's points (sampling.glsl compiled as C++), as the page names them
-    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(depth | path));
+    uint32_t name = gpu::branchName(depth, path);
+    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(name));
     glm::vec2 u = shader::sobolPoint(accumulated, sequence);
     return glm::dvec2(u);
 }
@@ -78,7 +79,8 @@ glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
 glm::dvec2 rouletteSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                           uint32_t path) {
     constexpr uint32_t kRouletteSalt = 0x0B0E7712u;  // ROULETTE_SALT
-    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(depth | path));
+    uint32_t name = gpu::branchName(depth, path);
+    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(name));
     return glm::dvec2(shader::sobolPoint(accumulated, sequence ^ kRouletteSalt));
 }
 

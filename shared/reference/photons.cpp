@@ -2,11 +2,11 @@
 
 #include "reference/ray_tree.h"
 #include "reference/sampling.h"
+#include "core/workers.h"
 
 #include <algorithm>
 #include <cmath>
 #include <mutex>
-#include <thread>
 
 namespace rg {
 
@@ -96,50 +96,47 @@ ReferencePhotons::ReferencePhotons(const ReferenceRenderer& renderer,
                 backoff = std::max(
                     backoff, glm::dot(o.centre - t.centre, -light.direction) + o.radius);
             backoff = std::min(backoff, 1000 * t.radius);
-            unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-            std::vector<std::thread> workers;
-            for (unsigned w = 0; w < threads; ++w)
-                workers.emplace_back([&, w] {
-                    ReferencePhotons part(renderer_);
-                    for (int j = int(w); j < side; j += int(threads))
-                        for (int i = 0; i < side; ++i) {
-                            double u = (i + 0.5) / side, v = (j + 0.5) / side;
-                            glm::dvec3 origin, direction, tangent, bitangent, power;
-                            if (sun) {
-                                direction = light.direction;
-                                basis(direction, tangent, bitangent);
-                                double r = t.radius * std::sqrt(u), phi = 2 * kPi * v;
-                                glm::dvec3 x = t.centre + r * (std::cos(phi) * tangent +
-                                                               std::sin(phi) * bitangent);
-                                power = light.irradiance / density(x, direction);
-                                origin = x - direction * backoff;
-                            } else {
-                                glm::dvec3 axis =
-                                    glm::normalize(t.centre - light.position);
-                                double cosine = 1 - u * (1 - cosMaxOf(t));
-                                double sine =
-                                    std::sqrt(std::max(0.0, 1 - cosine * cosine));
-                                basis(axis, tangent, bitangent);
-                                direction = glm::normalize(
-                                    cosine * axis +
-                                    sine * (std::cos(2 * kPi * v) * tangent +
-                                            std::sin(2 * kPi * v) * bitangent));
-                                power =
-                                    light.intensity / density(light.position, direction);
-                                origin = light.position;
-                            }
-                            // its own facets at rough hits (chapter 15)
-                            uint32_t key = shader::pcgHash(uint32_t(j * side + i) ^
-                                                           shader::pcgHash(uint32_t(
-                                                               &t - targets.data())));
-                            part.trace(settings, origin, direction, power, MediumStack{},
-                                       false, 0, 0, key);
+            unsigned threads = workerCount();
+            runWorkers(threads, size_t(8) << 20, [&](unsigned w) {  // short paths
+                ReferencePhotons part(renderer_);
+                for (int j = int(w); j < side; j += int(threads))
+                    for (int i = 0; i < side; ++i) {
+                        double u = (i + 0.5) / side, v = (j + 0.5) / side;
+                        glm::dvec3 origin, direction, tangent, bitangent, power;
+                        if (sun) {
+                            direction = light.direction;
+                            basis(direction, tangent, bitangent);
+                            double r = t.radius * std::sqrt(u), phi = 2 * kPi * v;
+                            glm::dvec3 x = t.centre + r * (std::cos(phi) * tangent +
+                                                           std::sin(phi) * bitangent);
+                            power = light.irradiance / density(x, direction);
+                            origin = x - direction * backoff;
+                        } else {
+                            glm::dvec3 axis =
+                                glm::normalize(t.centre - light.position);
+                            double cosine = 1 - u * (1 - cosMaxOf(t));
+                            double sine =
+                                std::sqrt(std::max(0.0, 1 - cosine * cosine));
+                            basis(axis, tangent, bitangent);
+                            direction = glm::normalize(
+                                cosine * axis +
+                                sine * (std::cos(2 * kPi * v) * tangent +
+                                        std::sin(2 * kPi * v) * bitangent));
+                            power =
+                                light.intensity / density(light.position, direction);
+                            origin = light.position;
                         }
-                    std::lock_guard<std::mutex> guard(lock);
-                    photons_.insert(photons_.end(), part.photons_.begin(),
-                                    part.photons_.end());
-                });
-            for (auto& w : workers) w.join();
+                        // its own facets at rough hits (chapter 15)
+                        uint32_t key = shader::pcgHash(uint32_t(j * side + i) ^
+                                                       shader::pcgHash(uint32_t(
+                                                           &t - targets.data())));
+                        part.trace(settings, origin, direction, power, MediumStack{},
+                                   false, 0, 0, key);
+                    }
+                std::lock_guard<std::mutex> guard(lock);
+                photons_.insert(photons_.end(), part.photons_.begin(),
+                                part.photons_.end());
+            });
         }
     }
     // Photons on a grid of cells as wide as the largest radius: a gather

@@ -2,6 +2,7 @@
 // only; media.cpp defines them, shading.cpp follows them), written again in
 // double from the pages' rules, not from the GPU's shaders.
 #pragma once
+#include "host_device.h"
 #include "reference/reference.h"
 
 #include <glm/glm.hpp>
@@ -76,11 +77,10 @@ glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
 // choice of child and its survival (ray_tree.glsl's roulette).
 glm::dvec2 rouletteSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                           uint32_t path);
-constexpr uint32_t kBranchPathShift = 8, kBranchPathMask = 0x00FFFF00u;
 // the stream of the pixel's seed for its facets (FACET_STREAM)
 constexpr uint32_t kFacetStream = 0xFACE75EDu;
 inline uint32_t childPath(uint32_t path, uint32_t refracted) {
-    return ((path << 1) | (refracted << kBranchPathShift)) & kBranchPathMask;
+    return ((path << 1) | (refracted << BRANCH_PATH_SHIFT)) & BRANCH_PATH_MASK;
 }
 
 // The normals of a hit facing the ray.

@@ -9,20 +9,22 @@
 
 #include "core/display.h"
 #include "core/progress.h"
+#include "core/workers.h"
 #include "reference/sampling.h"
 
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <chrono>
 #include <cstdint>
 #include <cmath>
 #include <random>
-#include <thread>
 
 namespace rg {
 
 namespace {
+// 64 MiB: a bounce's frame of radiance() is about 1.3 KiB at -O3 and
+// several times that in the sanitizer's build
+constexpr size_t kStackBytes = size_t(64) << 20;
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
@@ -487,29 +489,23 @@ FloatImage ReferenceRenderer::render(const ReferenceSettings& settings, uint32_t
     if (settings.stage >= ReferenceStage::Caustics && !settings.photonRadii.empty() &&
         !photons_)
         photons_ = std::make_shared<ReferencePhotons>(*this, settings);
-    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> workers;
+    unsigned threads = workerCount();
     std::atomic<uint32_t> rowsDone{0};
-    for (unsigned t = 0; t < threads; ++t)
-        workers.emplace_back([&, t] {
-            for (uint32_t y = t; y < height; y += threads, ++rowsDone)
-                // Ctrl-C: the rest stays unset
-                for (uint32_t x = 0; x < width && !interrupted(); ++x) {
-                    double stdError = 0;
-                    glm::dvec3 c = shade(settings, x, y, width, height, &stdError) *
-                                   settings.exposure;
-                    float* p = &image.rgba[4 * (size_t(y) * width + x)];
-                    p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
-                    if (settings.stage == ReferenceStage::Rough)
-                        p[3] = float(stdError * settings.exposure);
-                }
-        });
     Progress progress("CPU reference", height);  // on a terminal only
-    while (rowsDone.load() < height) {
-        progress.update(rowsDone.load());
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    for (auto& w : workers) w.join();
+    // a path recurses once a bounce, up to ROULETTE_MAX_DEPTH (chapter 15)
+    runWorkers(threads, kStackBytes, [&](unsigned t) {
+        for (uint32_t y = t; y < height; y += threads, ++rowsDone)
+            // Ctrl-C: the rest stays unset
+            for (uint32_t x = 0; x < width && !interrupted(); ++x) {
+                double stdError = 0;
+                glm::dvec3 c = shade(settings, x, y, width, height, &stdError) *
+                               settings.exposure;
+                float* p = &image.rgba[4 * (size_t(y) * width + x)];
+                p[0] = float(c.r), p[1] = float(c.g), p[2] = float(c.b);
+                if (settings.stage == ReferenceStage::Rough)
+                    p[3] = float(stdError * settings.exposure);
+            }
+    }, [&] { progress.update(rowsDone.load()); });
     return image;
 }
 
