@@ -217,7 +217,7 @@ TEST(Chapter15, RouletteGivesBackWhatTheDepthLimitCuts) {
 // each bounce weighted by G2 / G1 over the albedo, and the weights
 // multiply: noise with a heavy tail, so the whole ball's mean is checked
 // after more frames. Index 2.5 at roughness 1 is the slowest (64x64,
-// lavapipe): 0.983 after 64 frames, 0.992 after 512, 0.998 after 16,384.
+// lavapipe): 0.978 after 64 frames, 0.994 after 512, 0.995 after 16,384.
 TEST(Chapter15, WhiteFurnaceHoldsAtEveryIndexAndRoughness) {
     std::string dir = rgtest::outputDir("15_furnace_sweep");
     std::printf("white furnace, compensated: the whole ball's mean (its rim's)\n");
@@ -231,11 +231,9 @@ TEST(Chapter15, WhiteFurnaceHoldsAtEveryIndexAndRoughness) {
             bool heavyTail = roughness > 0.5;
             Furnace f = furnace(dir, name, glass, heavyTail ? 256 : 64, "on");
             std::printf("  %.2f: %.4f (%.4f)", roughness, f.ball, f.rim);
-            // the rim's 832 pixels are noisier than the whole ball's 2,512
             double within = heavyTail && ior > 2.2 ? 0.02 : 0.01;
             EXPECT_NEAR(f.ball, 1.0, within) << "n = " << ior << ", roughness " << roughness;
-            EXPECT_NEAR(f.rim, 1.0, heavyTail ? 0.02 : 0.01) << "n = " << ior << ", roughness " << roughness
-                                                             << ", the rim";
+            EXPECT_NEAR(f.rim, 1.0, within) << "n = " << ior << ", roughness " << roughness << ", the rim";
         }
         std::printf("\n");
     }
