@@ -123,9 +123,11 @@ Tree tree;
 uint childPath(uint path, uint refracted) {
     return ((path << 1u) | (refracted << BRANCH_PATH_SHIFT)) & BRANCH_PATH_MASK;
 }
+uint branchSequence(uint depth, uint path) {
+    return pcgHash(tree.seed ^ pcgHash(branchName(depth, path)));
+}
 vec2 branchSample(uint depth, uint path) {
-    uint sequence = pcgHash(tree.seed ^ pcgHash(branchName(depth, path)));
-    return sobolPoint(push.accumulated, sequence);
+    return sobolPoint(push.accumulated, branchSequence(depth, path));
 }
 // [end]
 
@@ -141,8 +143,7 @@ vec2 branchSample(uint depth, uint path) {
 // Names past 16 bounces keep their last 16 turns (BRANCH_PATH_MASK).
 #define ROULETTE_SALT 0x0B0E7712u  // the choice's sequence, beside the facet's
 vec2 choicePoint(uint depth, uint path) {
-    uint sequence = pcgHash(tree.seed ^ pcgHash(branchName(depth, path)));
-    return sobolPoint(push.accumulated, sequence ^ ROULETTE_SALT);
+    return sobolPoint(push.accumulated, branchSequence(depth, path) ^ ROULETTE_SALT);
 }
 // One child instead of two, u in [0,1): the refracted with probability
 // t / (t + r), else the reflected, carrying both children's light.

@@ -19,12 +19,12 @@ namespace {
 struct Worker {
     const std::function<void(unsigned)>* work;
     unsigned index;
-    std::atomic<bool>* done;
+    std::atomic<unsigned>* finished;  // how many workers have returned
 };
 void* runWorker(void* argument) {
     Worker* w = static_cast<Worker*>(argument);
     (*w->work)(w->index);
-    w->done->store(true);
+    ++*w->finished;
     return nullptr;
 }
 }  // namespace
@@ -33,7 +33,7 @@ void runWorkers(unsigned count, size_t stackBytes,
                 const std::function<void(unsigned)>& work,
                 const std::function<void()>& waiting) {
     std::vector<pthread_t> threads(count);
-    std::vector<std::atomic<bool>> done(count);
+    std::atomic<unsigned> finished{0};
     std::vector<Worker> workers(count);
     pthread_attr_t attributes;
     pthread_attr_init(&attributes);
@@ -41,18 +41,13 @@ void runWorkers(unsigned count, size_t stackBytes,
     unsigned started = 0;
     int error = 0;
     for (; started < count; ++started) {
-        done[started] = false;
-        workers[started] = {&work, started, &done[started]};
+        workers[started] = {&work, started, &finished};
         error = pthread_create(&threads[started], &attributes, runWorker,
                                &workers[started]);
         if (error != 0) break;
     }
     pthread_attr_destroy(&attributes);
-    auto allDone = [&] {
-        return std::all_of(done.begin(), done.begin() + started,
-                           [](auto& d) { return d.load(); });
-    };
-    while (waiting && !allDone()) {
+    while (waiting && finished.load() < started) {
         waiting();
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }

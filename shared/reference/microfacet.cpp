@@ -65,23 +65,25 @@ Compensation compensation(const ReferenceSettings& settings, const Material& m,
     return {1 / kept, 1 + m.reflectivity * (1 - keptMirror) / keptMirror};
 }
 
+// the branch's own Sobol sequence (ray_tree.glsl's branchSequence)
+uint32_t branchSequence(uint32_t seed, uint32_t depth, uint32_t path) {
+    return shader::pcgHash(seed ^ shader::pcgHash(gpu::branchName(depth, path)));
+}
+
 }  // namespace
 
 glm::dvec2 branchSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                         uint32_t path) {
     // the GPU's points (sampling.glsl compiled as C++), as the page names them
-    uint32_t name = gpu::branchName(depth, path);
-    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(name));
-    glm::vec2 u = shader::sobolPoint(accumulated, sequence);
+    glm::vec2 u = shader::sobolPoint(accumulated, branchSequence(seed, depth, path));
     return glm::dvec2(u);
 }
 
 glm::dvec2 rouletteSample(uint32_t seed, uint32_t accumulated, uint32_t depth,
                           uint32_t path) {
     constexpr uint32_t kRouletteSalt = 0x0B0E7712u;  // ROULETTE_SALT
-    uint32_t name = gpu::branchName(depth, path);
-    uint32_t sequence = shader::pcgHash(seed ^ shader::pcgHash(name));
-    return glm::dvec2(shader::sobolPoint(accumulated, sequence ^ kRouletteSalt));
+    uint32_t sequence = branchSequence(seed, depth, path) ^ kRouletteSalt;
+    return glm::dvec2(shader::sobolPoint(accumulated, sequence));
 }
 
 RoughBranches roughBranches(const ReferenceSettings& settings, const Material& m,
