@@ -296,6 +296,51 @@ TEST(Microfacet, OneBounceFurnaceLosesEnergyWithRoughnessNeverGains) {
     EXPECT_LT(albedo(1.0f, 1.5f, 1, 0.524), 0.5);
 }
 
+// Page 15's --sampling cone (sampleConeMixture): chapter 11's cone alone
+// carries the lobe times cos times the cone's solid angle, a hundred times
+// its share and more where a direction finds the lobe's peak; mixed half and
+// half with visible normals, every share is at most twice a visible
+// normal's (at most 2 here, no compensation) and the mean is the same
+// albedo: nothing outside the cone is lost any more.
+TEST(Microfacet, ConeMixtureKeepsTheAlbedoAndBoundsEveryShare) {
+    std::printf("cone mixture: roughness, n1 -> n2, theta_o: albedo (visible normals, mixture), "
+                "largest share (mixture, the cone alone)\n");
+    const int side = 400;
+    double worstAlone = 0;
+    for (float roughness : {0.05f, 0.15f, 0.4f, 0.8f})
+        for (auto [n1, n2] : {std::pair{1.0f, 1.5f}, std::pair{1.5f, 1.0f}, std::pair{1.0f, 2.4f}})
+            for (double thetaO : {0.0, 0.7, 1.3}) {
+                float alpha = roughness * roughness;
+                vec3 wo = fromAngles(thetaO, 0.3);
+                double sum = 0, largest = 0, alone = 0;
+                float cosMax = std::cos(roughness * 0.5f * float(kPi));
+                for (int i = 0; i < side; ++i)
+                    for (int j = 0; j < side; ++j) {
+                        vec2 u((i + 0.5f) / side, (j + 0.5f) / side);
+                        shader::ConeMixtureSample c = shader::sampleConeMixture(wo, alpha, n1, n2, u);
+                        for (auto [wi, density] : {std::pair{c.reflected, c.reflectedDensity},
+                                                   std::pair{c.refracted, c.refractedDensity}}) {
+                            if (density <= 0) continue;
+                            double f = shader::dielectricCosBsdf(wo, wi, alpha, n1, n2, FRESNEL_EXACT, 0);
+                            double share = f / density;
+                            sum += share, largest = std::max(largest, share);
+                            // the same direction with the cone's density alone (its half of the samples)
+                            vec3 axis = wi.z > 0 ? vec3(-wo.x, -wo.y, wo.z) : glm::refract(-wo, vec3(0, 0, 1), n1 / n2);
+                            float cone = shader::coneDensity(axis, wi, cosMax);
+                            if (u.x < 0.5f && cone > 0) alone = std::max(alone, f / cone);
+                        }
+                    }
+                double mean = sum / (double(side) * side), expected = albedo(alpha, n1, n2, thetaO);
+                std::printf("  %.2f %.1f -> %.1f %.1f: %.4f %.4f, %.3f %.1f\n", roughness, n1, n2, thetaO, expected,
+                            mean, largest, alone);
+                EXPECT_NEAR(mean, expected, 0.01) << "roughness " << roughness << ", " << n1 << " -> " << n2
+                                                  << ", theta " << thetaO;
+                EXPECT_LE(largest, 2.0 + 1e-3) << "roughness " << roughness << ", " << n1 << " -> " << n2;
+                worstAlone = std::max(worstAlone, alone);
+            }
+    EXPECT_GT(worstAlone, 100.0) << "the cone alone";
+}
+
 // [region albedo_table]
 // The table's nodes against the BSDF integrated over the sphere of
 // directions (the evaluation, not the sampling the table was made with),

@@ -86,8 +86,8 @@ int main(int argc, char** argv) {
             rg::addSpectralOptions(params, s);
             params.choice("--sampling", s.facetSampling,
                           "How a rough hit draws its branches: visible normals, or "
-                          "chapter 11's cone (page 15's comparison; the reference "
-                          "draws visible normals)",
+                          "chapter 11's cone mixed with them (page 15's comparison; "
+                          "the reference draws visible normals)",
                           {"visible", "cone"});
             params.choice("--multiple-scattering", multipleScattering,
                           "Give back the light single scattering between the facets "

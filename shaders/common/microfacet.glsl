@@ -147,4 +147,48 @@ MicrofacetSplit microfacetSplit(vec3 wo, vec3 m, float alpha, float n1, float n2
     return s;
 }
 // [end]
+
+// [region cone_mixture]
+// Chapter 11's cone as a sampler for this model (page 15's comparison): a
+// direction uniform in the cone of half-angle roughness x 90 degrees about
+// the smooth mirror (refracted) direction. Alone it carries the BSDF times
+// cos times the cone's solid angle: up to D's peak, 1 / (pi alpha^2), times
+// that angle, so the rare direction that finds the lobe's peak carries a
+// hundred times its share and more (a firefly), and none leaves the cone. Half
+// the samples draw a visible normal instead and each branch's density is
+// the mixture's (defensive importance sampling, Hesterberg 1995; Veach's
+// one-sample MIS with the balance heuristic, thesis 9.2.4): a share is then
+// at most twice a visible normal's, and no direction is left out.
+struct ConeMixtureSample {
+    vec3 reflected, refracted;  // refracted: 0 where none
+    float reflectedDensity, refractedDensity;  // per solid angle; 0: carries nothing
+};
+float coneDensity(vec3 axis, vec3 wi, float cosMax) {
+    return dot(axis, wi) >= cosMax ? 1.0f / (2.0f * kPi * (1.0f - cosMax)) : 0.0f;
+}
+ConeMixtureSample sampleConeMixture(vec3 wo, float alpha, float n1, float n2, vec2 u) {
+    float roughness = sqrt(alpha), cosMax = cos(roughness * 0.5f * kPi);
+    vec3 mirror = vec3(-wo.x, -wo.y, wo.z);
+    vec3 through = refract(-wo, vec3(0.0f, 0.0f, 1.0f), n1 / n2);
+    ConeMixtureSample c;
+    if (u.x < 0.5f) {  // the cone's half, u.x stretched back to [0, 1)
+        vec2 v = vec2(2.0f * u.x, u.y);
+        c.reflected = lobeDirection(mirror, roughness, v);
+        c.refracted =
+            through == vec3(0.0f) ? through : lobeDirection(through, roughness, v);
+    } else {  // the visible normals' half
+        vec3 m = sampleVisibleNormal(wo, alpha, vec2(2.0f * u.x - 1.0f, u.y));
+        MicrofacetSplit s = microfacetSplit(wo, m, alpha, n1, n2, 0u, 0.0f);
+        c.reflected = s.reflected, c.refracted = s.refracted;
+    }
+    c.reflectedDensity = 0.5f * coneDensity(mirror, c.reflected, cosMax) +
+                         0.5f * dielectricPdf(wo, c.reflected, alpha, n1, n2);
+    c.refractedDensity = 0.5f * dielectricPdf(wo, c.refracted, alpha, n1, n2);
+    if (through != vec3(0.0f))
+        c.refractedDensity += 0.5f * coneDensity(through, c.refracted, cosMax);
+    if (c.reflected.z <= 0.0f) c.reflectedDensity = 0.0f;
+    if (c.refracted.z >= 0.0f) c.refractedDensity = 0.0f;
+    return c;
+}
+// [end]
 #endif

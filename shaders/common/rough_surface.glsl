@@ -100,34 +100,24 @@ float roughLobe(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi
 }
 
 // [region cone_split]
-// --sampling cone, for the comparison on page 15: chapter 11's sampler for
-// the same model. Each branch's direction is uniform in the cone of
-// half-angle roughness x 90 degrees about the smooth surface's mirror or
-// refracted direction, and carries the BSDF times cos over the cone's
-// density: the same light on average where the lobe lies inside the cone,
-// with weights that are not bounded (and nothing from outside the cone).
-float coneShare(GpuMaterial m, float alpha, float n1, float n2, vec3 wo, vec3 wi,
-                float cosMax, Compensation c) {
-    return roughLobe(m, alpha, n1, n2, wo, wi, c) * 2.0 * kPi * (1.0 - cosMax);
-}
+// --sampling cone, for the comparison on page 15: microfacet.glsl's mixture
+// of chapter 11's cone and visible normals; each branch carries the lobe
+// times cos over the mixture's density.
 RoughSplit coneSplit(GpuMaterial m, float alpha, float n1, float n2, vec3 n, vec3 ns,
                      vec3 direction, vec2 u) {
     mat3 frame = basisAround(ns);  // the frame of ns, as the reference builds it
     vec3 t = frame[0], b = frame[1];
     vec3 wo = normalize(
         vec3(dot(-direction, t), dot(-direction, b), max(dot(-direction, ns), 1e-6)));
-    float roughness = sqrt(alpha), cosMax = cos(roughness * 0.5 * kPi);
     Compensation c = compensation(m, alpha, n1, n2, wo.z);
+    ConeMixtureSample s = sampleConeMixture(wo, alpha, n1, n2, u);
     RoughSplit r;
-    r.reflected = lobeDirection(reflect(direction, ns), roughness, u);
-    vec3 through = refract(direction, ns, n1 / n2);
-    r.refracted = through == vec3(0.0) ? through : lobeDirection(through, roughness, u);
-    vec3 wr = vec3(dot(r.reflected, t), dot(r.reflected, b), dot(r.reflected, ns));
-    vec3 wt = vec3(dot(r.refracted, t), dot(r.refracted, b), dot(r.refracted, ns));
-    r.reflectedShare = wr.z > 0.0 ? coneShare(m, alpha, n1, n2, wo, wr, cosMax, c) : 0.0;
-    r.refractedShare = through != vec3(0.0) && wt.z < 0.0
-                           ? coneShare(m, alpha, n1, n2, wo, wt, cosMax, c)
-                           : 0.0;
+    r.reflected = s.reflected.x * t + s.reflected.y * b + s.reflected.z * ns;
+    r.refracted = s.refracted.x * t + s.refracted.y * b + s.refracted.z * ns;
+    float reflected = roughLobe(m, alpha, n1, n2, wo, s.reflected, c),
+          refracted = roughLobe(m, alpha, n1, n2, wo, s.refracted, c);
+    r.reflectedShare = s.reflectedDensity > 0.0 ? reflected / s.reflectedDensity : 0.0;
+    r.refractedShare = s.refractedDensity > 0.0 ? refracted / s.refractedDensity : 0.0;
     if (dot(r.reflected, n) <= 0.0) r.reflectedShare = 0.0;
     if (dot(r.refracted, n) >= 0.0) r.refractedShare = 0.0;
     return r;
