@@ -6,8 +6,10 @@
 # today gets: Mesa 25, GCC 14, Dear ImGui 1.91, the 1.4 validation layer.
 # CI (.ci/run) uses it to run the README's two commands there.
 #
-#   tools/debian13.sh [--root DIR] [--fresh] [COMMAND...]
+#   tools/debian13.sh [--root DIR] [--fresh] [--suite bookworm] [COMMAND...]
 #
+# --suite bookworm makes a fresh Debian 12 instead (a learner's new Debian
+# 12 machine: the set-up's time from nothing); use it with its own --root.
 # COMMAND (default: tools/setup.sh && tools/test.sh) runs in /rayglass
 # as root. The chroot is kept in DIR (default build-debian13/root) and made
 # again only with --fresh or when it is missing; the copy of the checkout is
@@ -20,10 +22,14 @@ top=$PWD
 
 root=build-debian13/root
 fresh=0
+suite=trixie
 while [ $# -gt 0 ]; do
   case "$1" in
     --root) root="$2"; shift ;;
     --fresh) fresh=1 ;;
+    --suite)
+      case "${2:-}" in trixie | bookworm) suite=$2 ;; *) echo "debian13.sh: --suite trixie or bookworm" >&2; exit 2 ;; esac
+      shift ;;
     --) shift; break ;;
     -*) echo "debian13.sh: unknown argument $1" >&2; exit 2 ;;
     *) break ;;
@@ -43,14 +49,14 @@ if [ "$fresh" = 1 ] || [ ! -x "$root/usr/bin/apt-get" ]; then
   . /etc/os-release
   uri=$(debian_uri "${VERSION_CODENAME:-}" || true)
   if [ -z "$uri" ]; then
-    echo "debian13.sh: cannot find this system's Debian apt source to make a trixie system from" >&2
+    echo "debian13.sh: cannot find this system's Debian apt source to make a $suite system from" >&2
     exit 1
   fi
   rm -rf "$root"
   mkdir -p "$root"
-  echo "== debootstrap trixie from $uri into $root"
+  echo "== debootstrap $suite from $uri into $root"
   start=$SECONDS
-  debootstrap --variant=minbase --include=ca-certificates trixie "$root" "$uri" >"$root.log" 2>&1 ||
+  debootstrap --variant=minbase --include=ca-certificates "$suite" "$root" "$uri" >"$root.log" 2>&1 ||
     { tail -n 20 "$root.log"; exit 1; }
   echo "== debootstrap took $((SECONDS - start)) s"
   # No services start inside the chroot (apt's maintainer scripts ask this).

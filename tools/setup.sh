@@ -6,10 +6,13 @@
 # ebook out/rayglass.pdf (tools/ebook.py). It builds the chapters only;
 # tools/test.sh builds the tests.
 #
-#   tools/setup.sh [--deps-only] [--no-docs] [--out DIR] [--build DIR]
+#   tools/setup.sh [--deps-only] [--no-docs] [--size WxH] [--out DIR] [--build DIR]
 #
 # --no-docs leaves out the site, the ebook, the glTF validator (one test of
 # the full suite) and the packages only they need (CI's Debian 13 part).
+# --size renders the chapters' pictures at W x H instead of each chapter's
+# default (800x450); CI's Debian 13 part checks them smaller. Each step
+# prints the time it took.
 # Idempotent: installed packages are skipped. Uses sudo when not root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,12 +21,16 @@ deps_only=0
 docs=1
 out=out
 build=build
+size=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --deps-only) deps_only=1 ;;
     --no-docs) docs=0 ;;
     --out) out="$2"; shift ;;
     --build) build="$2"; shift ;;
+    --size)
+      [[ "${2:-}" =~ ^([0-9]+)x([0-9]+)$ ]] || { echo "setup.sh: --size wants WxH, e.g. 400x225" >&2; exit 2; }
+      size=(--width "${BASH_REMATCH[1]}" --height "${BASH_REMATCH[2]}"); shift ;;
     *) echo "setup.sh: unknown argument $1" >&2; exit 2 ;;
   esac
   shift
@@ -115,7 +122,10 @@ install_deps() {
   fi
 }
 
+step=$SECONDS
+took() { echo "== $1 took $((SECONDS - step)) s"; step=$SECONDS; }
 install_deps
+took "installing the packages"
 if [ "$docs" -eq 1 ] && [ ! -f .node/node_modules/gltf-validator/package.json ]; then
   # Debian's npm, unless a Node.js from elsewhere brought its own
   command -v npm >/dev/null || "${sudo_cmd[@]}" apt-get install -y -q npm
@@ -123,6 +133,7 @@ if [ "$docs" -eq 1 ] && [ ! -f .node/node_modules/gltf-validator/package.json ];
   # offline, the rest still installs; the one test that needs it says so
   npm install --prefix .node --no-audit --no-fund --loglevel=error "$gltf_validator" >/dev/null ||
     echo "setup.sh: warning: npm could not install $gltf_validator (the gltf_validator test will fail)" >&2
+  took "npm"
 fi
 [ "$deps_only" -eq 1 ] && exit 0
 
@@ -130,12 +141,16 @@ echo "== building the chapters in $build"
 . tools/lib/configure.sh  # rg_configure
 rg_configure "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j "$(nproc)" --target chapters
+took "the build"
 
 status=0
-tools/run-all.sh --build "$build" --out "$out" || status=1
+tools/run-all.sh --build "$build" --out "$out" "${size[@]}" || status=1
+took "running the chapters"
 [ "$docs" -eq 1 ] || exit $status
 echo "== building the docs site"
 tools/site.sh --out "$out/site" || status=1
+took "the site"
 echo "== printing the ebook"
 /usr/bin/python3 tools/ebook.py --site "$out/site" --out "$out/rayglass.pdf" || status=1
+took "the ebook"
 exit $status
