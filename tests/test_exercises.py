@@ -8,7 +8,8 @@ written into the same copy, draws the build's picture to the bit, so the
 copy and --shader-source change nothing else (chapter 14 within one code:
 its photons are stored in the order their atomics happen to run, so its
 float sums may round differently from run to run). A starter broken by a typo
-is refused with one line naming its file and line, exit 2.
+is refused with one line naming its file and line, exit 2, and so is a typo
+in the copy's photon shader (chapter 15's photons are compiled from it).
 
     tests/test_exercises.py BUILD_BIN_DIR
 """
@@ -70,6 +71,19 @@ def broken(bin_dir, work):
     if run.returncode != 2 or len(lines) != 1 or "shaders/common/shading.glsl:100:" not in lines[0]:
         return f"a broken starter: exit {run.returncode}, {lines}"
     print(f"a broken starter: {lines[0]}")
+    # a photon pass compiles from the copy too (chapter 15's caustics follow
+    # the reader's facets): a typo there is refused the same way
+    tree = work / "exercise-broken-photons"
+    exercise("15_frosted_glass", tree)
+    photons = tree / "shaders" / "15_frosted_glass" / "photon.rgen"
+    photons.write_text(photons.read_text() + "a typo\n")
+    run = subprocess.run([str(bin_dir / "15_frosted_glass"), "--headless", *SIZE, "--shader-source", str(tree),
+                          "--output", str(work / "broken_photons.png")], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600)
+    lines = [l for l in run.stderr.splitlines() if l.strip()]
+    if run.returncode != 2 or len(lines) != 1 or "shaders/15_frosted_glass/photon.rgen:" not in lines[0]:
+        return f"a broken photon shader: exit {run.returncode}, {lines}"
+    print(f"a broken photon shader: {lines[0]}")
     return None
 
 

@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <list>
 
 namespace rg {
 
@@ -152,8 +153,17 @@ int runRtChapter(int argc, char** argv, const RtChapter& chapter) {
                    : TwoLaunches{};
         // Chapter 14's photon map: traced and gathered into a grid before each
         // frame's camera rays.
+        std::list<ShaderReload> passSources;  // compile()'s, alive with the pipelines
+        auto compile = [&](RtShaders stages) {
+            stages.spirvDir.clear();  // the build's
+            if (opts.shaderSource.empty()) return stages;
+            ShaderReload& tree = passSources.emplace_back(stages, opts.shaderSource);
+            std::optional<RtShaders> compiled = tree.compileNow();
+            if (!compiled) throw InputError(opts.shaderSource + ": " + tree.status());
+            return *compiled;
+        };
         FramePass pass = chapter.framePass
-                             ? chapter.framePass({app, scene, rt, shaders})
+                             ? chapter.framePass({app, scene, rt, shaders, compile})
                              : FramePass{};
         FrameLoop loop(app.gpu, app.window.get(), target,
                        VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, app.deletion);

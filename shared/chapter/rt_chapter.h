@@ -74,6 +74,9 @@ struct FramePassContext {
     const Scene& scene;
     const RtScene& rt;
     const RtShaders& shaders;  // the camera rays' (specialized as theirs)
+    // A pass's own stages as the camera's came: the build's SPIR-V, or
+    // compiled now from --shader-source's tree (an exercise's copy).
+    std::function<RtShaders(RtShaders)> compile;
 };
 
 struct RtChapter {

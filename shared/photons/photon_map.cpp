@@ -198,9 +198,8 @@ PhotonMap createPhotonMap(const FramePassContext& c, const PhotonSettings& setti
     // The photons' ray generation shader, with the camera rays' hit groups.
     RtShaders shaders = c.shaders;
     shaders.raygen = photonShader;
-    shaders.spirvDir.clear();  // the build's, also under --shader-source
     map.tracer = createRtPipeline(gpu, deletion, c.rt.descriptors.layout,
-                                  sizeof(gpu::RtPush), shaders);
+                                  sizeof(gpu::RtPush), c.compile(shaders));
     // The grid: three compute shaders (count, prefix sum, scatter).
     map.gridLayout =
         createPipelineLayout(gpu, deletion, c.rt.descriptors.layout,
