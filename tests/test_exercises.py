@@ -15,6 +15,7 @@ in the copy's photon shader (chapter 15's photons are compiled from it).
 """
 import json
 import pathlib
+import re
 import subprocess
 import sys
 import tempfile
@@ -42,20 +43,80 @@ def exercise(chapter, out, solution=False):
     subprocess.run(args + (["--solution"] if solution else []), check=True, capture_output=True)
 
 
+# Two wrong answers a learner might write per exercise, each one edit of the
+# solution (text in the solution's region -> what the learner wrote), which
+# `tools/exercise.py --check` must call wrong.
+WRONG = {
+    "05_ambient": [("m.ka.rgb * camera.ambient.rgb", "camera.ambient.rgb", "k_a left out"),
+                   ("m.ka.rgb * camera.ambient.rgb", "m.ka.rgb", "I_a left out")],
+    "06_diffuse": [("if (lightVisible(origin, lights[i].position.xyz))", "if (true)", "no shadow ray"),
+                   ("safeNormalize(lights[i].position.xyz - p)", "safeNormalize(p - lights[i].position.xyz)",
+                    "l pointing away from the light")],
+    "07_specular": [("return pow(cosine, shininess);", "return pow(shininess, cosine);", "pow's arguments swapped"),
+                    ("return pow(cosine, shininess);", "return cosine;", "the power left out")],
+    "08_reflection": [("throughput *= mirror;", "", "the throughput not multiplied by the mirror's share"),
+                      ("origin = secondaryOrigin(payload.position, payload.error, n);",
+                       "origin = payload.position;", "the origin not moved off the surface")],
+    "09_fresnel": [("dot(n, -direction), n1, n2)", "dot(n, direction), n1, n2)", "cos i of the wrong sign"),
+                   ("float reflected = transmission * F + (1.0 - transmission) * m.params.y;",
+                    "float reflected = F;", "F for the opaque part too")],
+    "10_refraction": [("o = secondaryOrigin(p, e, -n);", "o = secondaryOrigin(p, e, n);",
+                       "the origin moved to the near side"),
+                      ("refractedDirection(b.direction, n, ns, s.eta)", "b.direction", "the ray not bent")],
+    "11_rough": [("radiance += sum / float(count);", "radiance += sum;", "the sum, not the mean"),
+                 ("lobeDirection(mirror, roughness,", "lobeDirection(mirror, 2.0 * roughness,",
+                  "a lobe twice as wide")],
+    "13_real_glass": [("return exp(-sigma * t);", "return exp(-sigma);", "the distance left out"),
+                      ("return exp(-sigma * t);", "return exp(sigma * t);", "the exponent's sign")],
+    "14_caustics": [("for (uint k = 0u; k < 8u; ++k) {", "for (uint k = 0u; k < 1u; ++k) {", "one cell read"),
+                    ("return sum / (kPi * r * r);", "return sum / (4.0 * kPi * r * r);",
+                     "over a sphere's area, not the disc's")],
+    "15_frosted_glass": [("return normalize(vec3(h.x * alpha, h.y * alpha, max(h.z, 0.0f)));",
+                          "return normalize(h);", "not stretched back"),
+                         ("vec3 h = vec3(s * cos(phi), s * sin(phi), z) + stretched;",
+                          "vec3 h = vec3(s * cos(phi), s * sin(phi), z);", "the cap not moved by wo")],
+}
+
+
+def run_check(chapter, tree, bin_dir):
+    run = subprocess.run([sys.executable, str(ROOT / "tools" / "exercise.py"), chapter, "--out", str(tree),
+                          "--check", "--bin", str(bin_dir)], capture_output=True, text=True, timeout=900)
+    return run.returncode, (run.stdout + run.stderr).strip()
+
+
 def check(chapter, bin_dir, work):
-    build = render(bin_dir, chapter, work / f"{chapter}_build.png", [])
     tree = work / f"exercise-{chapter}"
     exercise(chapter, tree)
-    starter = render(bin_dir, chapter, work / f"{chapter}_starter.png", ["--shader-source", str(tree)])
+    text = (ROOT / "exercises" / f"{chapter}.glsl").read_text()
+    file = re.search(r"^// replaces: (\S+)#", text, re.M).group(1)
+    code, said = run_check(chapter, tree, bin_dir)
+    print(f"{chapter}, the starter: {said}")
+    if code != 1:
+        return f"{chapter}: --check says of the starter: {said}"
+    # the starter differs where the stage shows
+    build = numpy.asarray(Image.open(bin_dir.parent / "exercise-check" / f"{chapter}.png").convert("RGB")).astype(int)
+    starter = numpy.asarray(Image.open(tree / "check" / "yours.png").convert("RGB")).astype(int)
     differ = (numpy.abs(starter - build).max(axis=2) > 2).mean()
-    print(f"{chapter}: the starter differs from the chapter in {100 * differ:.1f} % of pixels")
     if differ < 0.005:
         return f"{chapter}: the starter draws the chapter's picture (only {100 * differ:.2f} % of pixels differ)"
     exercise(chapter, tree, solution=True)
-    solved = render(bin_dir, chapter, work / f"{chapter}_solution.png", ["--shader-source", str(tree)])
+    code, said = run_check(chapter, tree, bin_dir)
+    print(f"{chapter}, the solution: {said}")
+    if code != 0:
+        return f"{chapter}: --check says of the solution: {said}"
+    solved = numpy.asarray(Image.open(tree / "check" / "yours.png").convert("RGB")).astype(int)
     tolerance = 1 if chapter in ("14_caustics", "15_frosted_glass") else 0  # photons
     if (numpy.abs(solved - build) > tolerance).any():
         return f"{chapter}: the solution in the copy draws another picture than the build"
+    solution = (tree / "shaders" / file).read_text()
+    for old, new, what in WRONG[chapter]:
+        if solution.count(old) < 1:
+            return f"{chapter}: the wrong answer '{what}' edits '{old}', which shaders/{file} no longer holds"
+        (tree / "shaders" / file).write_text(solution.replace(old, new))
+        code, said = run_check(chapter, tree, bin_dir)
+        print(f"{chapter}, {what}: {said}")
+        if code != 1:
+            return f"{chapter}: --check does not call '{what}' wrong: {said}"
     return None
 
 

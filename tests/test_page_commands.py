@@ -5,7 +5,9 @@ run as printed, so that a page cannot show a command that fails.
 Each block runs as one bash script (set -e) in a fresh folder that looks
 like the repository's root: assets/, tests/, tools/ and docs/ are the
 sources', and build/bin/ holds one small script per chapter (and per tool
-a page runs) that runs the real executable with --validation added. No display is set, so commands
+a page runs) that runs the real executable with --validation added. An
+exercise's `tools/exercise.py NN --check`, run on the starter the block has
+just made, must say "not yet". No display is set, so commands
 printed for a window run headless. The lines that build or test the tree
 itself (cmake --build, ctest) are left out, and so is a command the page
 has already printed. A block passes when it exits 0,
@@ -36,7 +38,10 @@ def blocks(markdown):
     # it alike for every page, and test_cli.cpp's OutputsGoToOutByDefault
     # runs its commands for every chapter.
     markdown = re.sub(r"<!-- footer: .*?<!-- end -->", "", markdown, flags=re.S)
-    return re.findall(r"^```sh\n(.*?)^```", markdown, re.S | re.M)
+    # a block inside a list item is indented: its lines lose the fence's indent
+    found = re.findall(r"^( *)```sh\n(.*?)^\1```", markdown, re.S | re.M)
+    return ["".join(l[len(indent):] if l.startswith(indent) else l for l in body.splitlines(True))
+            for indent, body in found]
 
 
 def make_root(folder, bin_dir):
@@ -67,6 +72,12 @@ def run_block(block, bin_dir, seen):
             if key in seen:
                 continue
             seen.add(key)
+        if command.startswith("tools/exercise.py") and "--check" in command:
+            # right after the starter is made, the check must say "not yet"
+            # (exit 1); exit 2 (its input refused) fails the block
+            lines += [f"{command} > exercise-check.txt || test $? -eq 1", "cat exercise-check.txt",
+                      "grep -q '^not yet: ' exercise-check.txt"]
+            continue
         lines.append(line)
     script = "\n".join(lines)
     if not script.strip():
