@@ -83,8 +83,9 @@ CHECK_SHARE = 0.001  # right: at most this share of the pixels differ
 
 
 def render(exe, png, extra):
-    """Runs the chapter headless into png; its RGB rows, or exit 2 with its
-    line where it refuses the shaders (or exit 1 where it fails)."""
+    """Runs the chapter headless into png and returns the picture (RGB);
+    where the chapter refuses the shaders, its one line and exit 2 (exit 1
+    where it fails otherwise or the validation layer speaks)."""
     run = subprocess.run([str(exe), "--headless", "--validation", *CHECK_SIZE, *extra, "--output", str(png)],
                          capture_output=True, text=True, timeout=900)
     if run.returncode != 0:
@@ -93,7 +94,7 @@ def render(exe, png, extra):
         sys.exit(2 if run.returncode == 2 else 1)
     report = json.loads(png.with_suffix(".json").read_text())
     if report["validation_messages"]:
-        print(f"exercise.py: not yet: {report['validation_messages']} validation messages (see {png.parent})")
+        print(f"not yet: {report['validation_messages']} validation messages (see {png.parent})")
         sys.exit(1)
     from PIL import Image  # only --check needs it (Debian's python3-pil)
     return Image.open(png).convert("RGB")
@@ -107,11 +108,11 @@ def built_picture(chapter, exe):
     folder = exe.parent.parent / "exercise-check"
     folder.mkdir(exist_ok=True)
     png, kept = folder / f"{chapter}.png", folder / f"{chapter}.stamp"
-    if png.is_file() and kept.is_file() and kept.read_text() == str(stamp):
+    if png.is_file() and kept.is_file() and kept.read_text() == stamp:
         from PIL import Image
         return Image.open(png).convert("RGB")
     picture = render(exe, png, [])
-    kept.write_text(str(stamp))
+    kept.write_text(stamp)
     return picture
 
 
