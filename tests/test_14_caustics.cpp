@@ -247,7 +247,9 @@ TEST(Chapter14, BallLensCausticMatchesParallelRays) {
 // Photons never gain or lose power on their way through clear glass, and
 // each ends stored on a diffuse surface, escaped or stopped by a limit: the
 // power stored plus the power escaped is the power sent at the ball
-// (E pi R^2), within 0.1 %.
+// (E pi R^2), within 0.1 %; under a sun with a disc 0.2 %: its beam is wider
+// than the ball, and which of its 200,000 photons meet the ball is a coin
+// toss each (0.1 % of binomial noise).
 TEST(Chapter14, ClearGlassLosesNoPhotonPower) {
     std::string dir = rgtest::outputDir("14_energy");
     nlohmann::json scene = sunScene(
@@ -273,7 +275,7 @@ TEST(Chapter14, ClearGlassLosesNoPhotonPower) {
         double grow = 1 + std::tan(degrees * kPi / 180), sent = kPi * grow * grow;
         double each = sent / emitted;  // every photon of one beam carries its power / N
         double escaped = double(counts["escaped_last_frame"]) * each, lost = double(counts["lost_last_frame"]) * each;
-        EXPECT_NEAR((stored + escaped) / kPi, 1.0, 0.002)
+        EXPECT_NEAR((stored + escaped) / kPi, 1.0, degrees > 0 ? 0.002 : 0.001)
             << name << ": stored " << stored << " W, escaped " << escaped << " W, lost " << lost << " W of " << kPi;
         EXPECT_LT(lost / kPi, 0.001) << name;
     }
