@@ -7,6 +7,7 @@
 #include "harness.h"
 #include "fresnel_equations.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -41,9 +42,12 @@ Rendered render(const std::string& scene, const std::string& stem, int width, in
 
 struct PlyPhoton {
     glm::dvec3 position, power;
+    glm::ivec3 colour;  // 0-255
 };
 
-// --photons-ply's file: x y z red green blue, floats, little-endian.
+// --photons-ply's file, little-endian: x y z power_r power_g power_b
+// (floats: metres and watts), red green blue (bytes, the power over the
+// brightest photon's).
 std::vector<PlyPhoton> readPly(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line, header;
@@ -53,13 +57,25 @@ std::vector<PlyPhoton> readPly(const std::string& path) {
         if (line.rfind("element vertex ", 0) == 0) count = std::stoul(line.substr(15));
     }
     EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos) << header;
+    EXPECT_NE(header.find("property float power_b\nproperty uchar red\n"), std::string::npos) << header;
     std::vector<PlyPhoton> photons(count);
     for (PlyPhoton& p : photons) {
         float v[6];
+        unsigned char colour[3];
         in.read(reinterpret_cast<char*>(v), sizeof v);
-        p = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+        in.read(reinterpret_cast<char*>(colour), sizeof colour);
+        p = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {colour[0], colour[1], colour[2]}};
     }
     EXPECT_TRUE(in) << path << ": shorter than its " << count << " photons";
+    // a viewer's colour: each channel's power over the brightest photon's
+    double brightest = 0;
+    for (const PlyPhoton& p : photons)
+        brightest = std::max({brightest, p.power.r, p.power.g, p.power.b});
+    int off = 0;
+    for (const PlyPhoton& p : photons)
+        for (int c = 0; c < 3; ++c)
+            off += std::abs(p.colour[c] - 255 * p.power[c] / brightest) > 1;
+    EXPECT_EQ(off, 0) << path << ": colours that are not the power over the brightest photon's";
     return photons;
 }
 

@@ -26,7 +26,8 @@ def fail(message):
 
 
 def read_ply(path):
-    """The photons' positions from a binary PLY of x, y, z, red, green, blue floats."""
+    """The photons' positions from --photons-ply's binary PLY: x, y, z and
+    power_r, power_g, power_b (floats), red, green, blue (bytes)."""
     with open(path, "rb") as f:
         data = f.read()
     end = data.find(b"end_header\n")
@@ -38,9 +39,10 @@ def read_ply(path):
         fail(f"{path}: not a binary little-endian PLY of vertices")
     n = int(counts[0])
     body = data[end + len(b"end_header\n"):]
-    if len(body) < n * 24:
-        fail(f"{path}: {n} vertices announced, {len(body) // 24} present")
-    return numpy.frombuffer(body[:n * 24], dtype="<f4").reshape(n, 6)[:, :3].astype(numpy.float64)
+    vertex = numpy.dtype([("xyz", "<f4", 3), ("power", "<f4", 3), ("colour", "u1", 3)])
+    if len(body) < n * vertex.itemsize:
+        fail(f"{path}: {n} vertices announced, {len(body) // vertex.itemsize} present")
+    return numpy.frombuffer(body[:n * vertex.itemsize], dtype=vertex)["xyz"].astype(numpy.float64)
 
 
 def floor_hits(scene, width, height):

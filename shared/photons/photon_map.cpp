@@ -361,7 +361,9 @@ LastPhotons readPhotons(const Gpu& gpu, DeletionQueue& deletion, const PhotonMap
 }
 
 // --photons-ply: the photons as a point cloud (position, power in watts),
-// in the scene file's coordinates, for MeshLab or Blender, and the tests.
+// in the scene file's coordinates, for MeshLab or Blender, and the tests. A
+// photon's power is a few microwatts, black as a colour, so each point also
+// gets a colour: its power over the largest of any photon's channels.
 void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& photons,
                      const glm::dvec3& origin) {
     std::string tmp = path + ".part";  // a reader never sees half a file
@@ -370,9 +372,17 @@ void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& ph
     std::fprintf(f,
                  "ply\nformat binary_little_endian 1.0\nelement vertex %zu\n"
                  "property float x\nproperty float y\nproperty float z\n"
-                 "property float red\nproperty float green\nproperty float blue\n"
+                 "property float power_r\nproperty float power_g\n"
+                 "property float power_b\n"
+                 "property uchar red\nproperty uchar green\nproperty uchar blue\n"
                  "end_header\n",
                  photons.size());
+    float brightest = 0;
+    for (const gpu::Photon& p : photons)
+        brightest = std::max({brightest, p.power.r, p.power.g, p.power.b});
+    auto shade = [&](float power) {
+        return uint8_t(std::lround(255.0f * std::clamp(power / brightest, 0.0f, 1.0f)));
+    };
     for (const gpu::Photon& p : photons) {
         float v[6] = {float(p.position.x - origin.x),
                       float(p.position.y - origin.y),
@@ -380,7 +390,9 @@ void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& ph
                       p.power.r,
                       p.power.g,
                       p.power.b};
+        uint8_t colour[3] = {shade(p.power.r), shade(p.power.g), shade(p.power.b)};
         std::fwrite(v, sizeof v, 1, f);
+        std::fwrite(colour, sizeof colour, 1, f);
     }
     bool ok = std::fclose(f) == 0;
     if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0)

@@ -56,7 +56,8 @@ void declarePhotonOptions(Params& params, PhotonSettings& photons) {
                    0, 1 << 30);
     params
         .text("--photons-ply", photons.ply,
-              "Write the last frame's photons to this PLY point cloud")
+              "Write the last frame's photons to this PLY point cloud (power in "
+              "watts, and as a colour)")
         .live = false;
 }
 // [end]
