@@ -380,8 +380,9 @@ void writePhotonsPly(const std::string& path, const std::vector<gpu::Photon>& ph
     float brightest = 0;
     for (const gpu::Photon& p : photons)
         brightest = std::max({brightest, p.power.r, p.power.g, p.power.b});
-    auto shade = [&](float power) {
-        return uint8_t(std::lround(255.0f * std::clamp(power / brightest, 0.0f, 1.0f)));
+    auto shade = [&](float power) {  // black where no photon carries any power
+        float share = brightest > 0.0f ? std::clamp(power / brightest, 0.0f, 1.0f) : 0.0f;
+        return uint8_t(std::lround(255.0f * share));
     };
     for (const gpu::Photon& p : photons) {
         float v[6] = {float(p.position.x - origin.x),
